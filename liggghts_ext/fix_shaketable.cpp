@@ -1,0 +1,93 @@
+// fix shaketable: thin LIGGGHTS adapter over freestand::ShakeTable.
+
+#include "fix_shaketable.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "comm.h"
+#include "error.h"
+#include "freestand/input_error.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+// Splits off the `plane Z` keyword, which belongs to the LIGGGHTS side (the
+// table plane seen by contact styles), from the motion arguments.
+std::vector<std::string> motion_args(int narg, char **arg, double &plane_z, Error *error) {
+  std::vector<std::string> args;
+  for (int i = 3; i < narg; ++i) {
+    if (!std::strcmp(arg[i], "plane")) {
+      char *end = nullptr;
+      if (i + 1 < narg) plane_z = std::strtod(arg[++i], &end);
+      if (!end || *end != '\0' || !std::isfinite(plane_z))
+        error->all(FLERR, "fix shaketable: 'plane' needs a height in m");
+    } else {
+      args.emplace_back(arg[i]);
+    }
+  }
+  return args;
+}
+
+}  // namespace
+
+FixShakeTable::FixShakeTable(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
+  vector_flag = 1;
+  size_vector = 9;
+  global_freq = 1;
+  extvector = 0;
+  restart_global = 1;
+  time_depend = 1;
+
+  try {
+    const freestand::ShakeTableSpec spec =
+        freestand::parse_shake_table_args(motion_args(narg, arg, plane_z_, error));
+    table_ = std::make_unique<freestand::ShakeTable>(spec);
+    start_ = spec.start_given ? spec.start : current_time();
+  } catch (const freestand::InputError &e) {
+    error->all(FLERR, e.what());
+  }
+  if (comm->me == 0) {
+    for (const std::string &line : table_->describe()) {
+      if (screen) fprintf(screen, "fix shaketable %s: %s\n", id, line.c_str());
+      if (logfile) fprintf(logfile, "fix shaketable %s: %s\n", id, line.c_str());
+    }
+  }
+}
+
+int FixShakeTable::setmask() { return 0; }
+
+void FixShakeTable::init() {}
+
+double FixShakeTable::current_time() const {
+  return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+}
+
+freestand::TableState FixShakeTable::state_at(double t) const { return table_->at(t - start_); }
+
+freestand::TableState FixShakeTable::state() const { return state_at(current_time()); }
+
+double FixShakeTable::compute_vector(int i) {
+  const freestand::TableState s = state();
+  if (i < 3) return s.acceleration[i];
+  if (i < 6) return s.velocity[i - 3];
+  return s.displacement[i - 6];
+}
+
+void FixShakeTable::write_restart(FILE *fp) {
+  if (comm->me != 0) return;
+  const double list[1] = {start_};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 1, fp);
+}
+
+void FixShakeTable::restart(char *buf) {
+  // A restarted run keeps playing the record where the saved run was.
+  start_ = reinterpret_cast<double *>(buf)[0];
+}

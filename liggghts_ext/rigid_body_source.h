@@ -1,0 +1,39 @@
+#ifndef FREESTAND_RIGID_BODY_SOURCE_H
+#define FREESTAND_RIGID_BODY_SOURCE_H
+
+// What compute rockslide needs from a fix that integrates rigid bodies: the
+// pose of every body, gathered on all ranks. Stock fix multisphere is adapted
+// by MultisphereBodySource; freestand's own rigid-body fixes implement this
+// interface directly.
+
+#include <mpi.h>
+
+#include <memory>
+#include <vector>
+
+#include "freestand/rocking_angles.h"
+
+namespace LAMMPS_NS {
+
+class Fix;
+
+class RigidBodySource {
+ public:
+  virtual ~RigidBodySource() = default;
+  // Largest body tag; poses are indexed by tag - 1.
+  virtual int max_tag() = 0;
+  // Poses of all bodies on all ranks, by tag - 1; `present[i]` is false for
+  // tags that do not exist (yet). Collective: every rank must call it.
+  virtual void gather_poses(std::vector<freestand::BodyPose> &poses,
+                            std::vector<char> &present) = 0;
+};
+
+// The body source behind a fix: the fix itself when it implements
+// RigidBodySource, an adapter kept in `adapter` for stock fix multisphere,
+// or null when the fix integrates no rigid bodies.
+RigidBodySource *find_rigid_body_source(Fix *fix, MPI_Comm world,
+                                        std::unique_ptr<RigidBodySource> &adapter);
+
+}  // namespace LAMMPS_NS
+
+#endif
