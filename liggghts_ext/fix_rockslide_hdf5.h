@@ -1,0 +1,48 @@
+/* freestand: fix rockslide/hdf5. Writes the channels of a compute rockslide,
+   the body poses and the table motion to an HDF5 file; see
+   docs/fix_rockslide_hdf5.md. */
+
+#ifdef FIX_CLASS
+
+FixStyle(rockslide/hdf5,FixRockSlideHDF5)
+
+#else
+
+#ifndef LMP_FIX_ROCKSLIDE_HDF5_H
+#define LMP_FIX_ROCKSLIDE_HDF5_H
+
+#include <memory>
+#include <string>
+
+#include "fix.h"
+#include "freestand/series_file.h"
+#include "lmptype.h"
+
+namespace LAMMPS_NS {
+
+class ComputeRockSlide;
+
+class FixRockSlideHDF5 : public Fix {
+ public:
+  FixRockSlideHDF5(class LAMMPS *lmp, int narg, char **arg);
+  ~FixRockSlideHDF5() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+
+ private:
+  void open_file();
+  void write_sample();
+
+  std::string compute_id_;                        // ID of the compute rockslide
+  std::string path_;                              // final file name
+  ComputeRockSlide *compute_ = nullptr;           // resolved in init()
+  std::unique_ptr<freestand::SeriesFile> file_;   // open on rank 0 only
+  bigint last_written_ = -1;                      // time step of the last sample
+};
+
+}  // namespace LAMMPS_NS
+
+#endif
+#endif
