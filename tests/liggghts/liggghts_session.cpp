@@ -16,7 +16,8 @@
 namespace freestand::testing {
 
 LiggghtsSession::LiggghtsSession(const std::string& log) {
-  std::vector<std::string> args{"freestand-lmp", "-screen", "none", "-log", log, "-nocite"};
+  // Not "-screen none": some LIGGGHTS 3.8 styles print to screen unchecked.
+  std::vector<std::string> args{"freestand-lmp", "-screen", "/dev/null", "-log", log, "-nocite"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), MPI_COMM_WORLD);

@@ -5,6 +5,9 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+
+extern char** environ;
 
 namespace freestand::testing {
 
@@ -25,8 +28,18 @@ std::string capture_command(const std::string& command, int* status) {
 }
 
 std::string mpirun(int processes) {
+  // The test process is itself an MPI singleton; Open MPI's variables it
+  // inherited would make the child mpirun join that job instead of starting
+  // its own, so they are removed from the child's environment.
+  std::string unset = "env";
+  for (char** var = environ; *var; ++var) {
+    if (std::strncmp(*var, "OMPI_", 5) && std::strncmp(*var, "PMIX_", 5) &&
+        std::strncmp(*var, "OPAL_", 5))
+      continue;
+    unset += " -u " + std::string(*var, std::strchr(*var, '=') - *var);
+  }
   // --oversubscribe: CI has 2 cores and may count fewer slots.
-  return "mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(processes);
+  return unset + " mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(processes);
 }
 
 }  // namespace freestand::testing

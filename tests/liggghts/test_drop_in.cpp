@@ -42,7 +42,8 @@ fs::path run_pour(const std::string& name, const std::string& launcher) {
   fs::create_directories(dir);
   const std::string command = launcher + " -in " FREESTAND_SOURCE_DIR
                               "/tests/liggghts/data/stock_pour.in -var out " + dir.string() +
-                              " -log " + (dir / "log.txt").string() + " -screen none";
+                              " -log " + (dir / "log.txt").string() +
+                              " -screen " + (dir / "screen.txt").string();
   const int status = freestand::testing::run_command(command);
   EXPECT_EQ(status, 0) << command;
   return dir;
