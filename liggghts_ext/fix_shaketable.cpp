@@ -48,7 +48,9 @@ FixShakeTable::FixShakeTable(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg,
     const freestand::ShakeTableSpec spec =
         freestand::parse_shake_table_args(motion_args(narg, arg, plane_z_, error));
     table_ = std::make_unique<freestand::ShakeTable>(spec);
-    start_ = spec.start_given ? spec.start : current_time();
+    anchor_step_ = update->ntimestep;
+    anchor_time_ = -spec.start;
+    dt_ = update->dt;
   } catch (const freestand::InputError &e) {
     error->all(FLERR, e.what());
   }
@@ -60,17 +62,30 @@ FixShakeTable::FixShakeTable(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg,
   }
 }
 
+// No per-step work: the table state is evaluated when asked for.
 int FixShakeTable::setmask() { return 0; }
 
-void FixShakeTable::init() {}
 
-double FixShakeTable::current_time() const {
-  return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+// Motion time is counted in steps from an anchor, not read from LIGGGHTS'
+// simulation time, which 3.8 does not carry through restart files.
+double FixShakeTable::motion_time() const {
+  return anchor_time_ + (update->ntimestep - anchor_step_) * dt_;
 }
 
-freestand::TableState FixShakeTable::state_at(double t) const { return table_->at(t - start_); }
+// The `timestep` command and fix dt/reset call this after changing dt; the
+// steps since the anchor were taken with the old dt, kept in dt_.
+void FixShakeTable::reset_dt() {
+  anchor_time_ = motion_time();
+  anchor_step_ = update->ntimestep;
+  dt_ = update->dt;
+}
 
-freestand::TableState FixShakeTable::state() const { return state_at(current_time()); }
+// `reset_timestep` renumbers steps without moving time.
+void FixShakeTable::reset_timestep(bigint newstep) {
+  anchor_step_ += newstep - update->ntimestep;
+}
+
+freestand::TableState FixShakeTable::state() const { return table_->at(motion_time()); }
 
 double FixShakeTable::compute_vector(int i) {
   const freestand::TableState s = state();
@@ -81,7 +96,9 @@ double FixShakeTable::compute_vector(int i) {
 
 void FixShakeTable::write_restart(FILE *fp) {
   if (comm->me != 0) return;
-  const double list[1] = {start_};
+  // Motion time, not the start time: LIGGGHTS 3.8 does not keep the
+  // simulation time in restart files (it restarts from 0).
+  const double list[1] = {motion_time()};
   const int size = sizeof(list);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list, sizeof(double), 1, fp);
@@ -89,5 +106,7 @@ void FixShakeTable::write_restart(FILE *fp) {
 
 void FixShakeTable::restart(char *buf) {
   // A restarted run keeps playing the record where the saved run was.
-  start_ = reinterpret_cast<double *>(buf)[0];
+  anchor_time_ = reinterpret_cast<double *>(buf)[0];
+  anchor_step_ = update->ntimestep;
+  dt_ = update->dt;
 }

@@ -13,6 +13,7 @@ FixStyle(shaketable,FixShakeTable)
 #include <memory>
 
 #include "fix.h"
+#include "lmptype.h"
 #include "freestand/shake_table.h"
 
 namespace LAMMPS_NS {
@@ -21,25 +22,26 @@ class FixShakeTable : public Fix {
  public:
   FixShakeTable(class LAMMPS *lmp, int narg, char **arg);
   int setmask() override;
-  void init() override;
   // Global vector: ax ay az vx vy vz dx dy dz at the current time step.
   double compute_vector(int i) override;
   void write_restart(FILE *fp) override;
   void restart(char *buf) override;
+  void reset_dt() override;
+  void reset_timestep(bigint newstep) override;
 
   // Table state at the current time step (what contact styles must use for
   // the table plane's position and velocity).
   freestand::TableState state() const;
-  // Table state at simulation time t.
-  freestand::TableState state_at(double t) const;
+  // Seconds since the motion's time 0 (negative before `start`).
+  double motion_time() const;
   // Height of the table top at rest (the `plane` keyword), m.
   double plane_height() const { return plane_z_; }
 
  private:
-  double current_time() const;
-
   std::unique_ptr<freestand::ShakeTable> table_;  // the motion, in motion time
-  double start_ = 0.0;                            // simulation time of motion time 0 (s)
+  bigint anchor_step_ = 0;                        // a time step at which ...
+  double anchor_time_ = 0.0;                      // ... the motion time was this (s)
+  double dt_ = 0.0;                               // time step since the anchor (s)
   double plane_z_ = 0.0;                          // table top height at rest (m)
 };
 

@@ -11,6 +11,8 @@
 
 #include "style_registry.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <map>
 
@@ -98,6 +100,25 @@ struct Registrar {
 namespace freestand {
 
 void register_freestand_styles(LAMMPS* lmp) { visit_styles(Registrar{lmp}); }
+
+}  // namespace freestand
+
+// The input command `clear` destroys Modify and Force and builds new ones
+// from the compile-time style lists, dropping our styles; it is a built-in
+// of Input, so it cannot be replaced through command_map. Both the LAMMPS
+// constructor and `clear` finish by calling LAMMPS::post_create() through
+// the PLT of libliggghts, so defining it here interposes it (the executable
+// exports it, see CMakeLists.txt): the library's own post_create runs, then
+// our styles are registered again.
+void LAMMPS_NS::LAMMPS::post_create() {
+  using PostCreate = void (*)(LAMMPS*);
+  static const auto library_post_create =
+      reinterpret_cast<PostCreate>(dlsym(RTLD_NEXT, "_ZN9LAMMPS_NS6LAMMPS11post_createEv"));
+  library_post_create(this);
+  freestand::register_freestand_styles(this);
+}
+
+namespace freestand {
 
 std::vector<StyleName> freestand_styles() {
   std::vector<StyleName> names;

@@ -16,8 +16,10 @@
 namespace freestand::testing {
 
 LiggghtsSession::LiggghtsSession(const std::string& log) {
-  // Not "-screen none": some LIGGGHTS 3.8 styles print to screen unchecked.
-  std::vector<std::string> args{"freestand-lmp", "-screen", "/dev/null", "-log", log, "-nocite"};
+  // Screen to stderr, not "none": some LIGGGHTS 3.8 styles print to screen
+  // unchecked, and a LIGGGHTS error exits the process, so its message must
+  // reach the test output (ctest shows it only for failing tests).
+  std::vector<std::string> args{"freestand-lmp", "-screen", "/dev/stderr", "-log", log, "-nocite"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), MPI_COMM_WORLD);
