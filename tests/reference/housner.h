@@ -1,0 +1,34 @@
+#ifndef FREESTAND_TESTS_HOUSNER_H
+#define FREESTAND_TESTS_HOUSNER_H
+
+// Independent reference for free rocking of a rigid rectangular block
+// (Housner 1963; ../shared/data/benchmarks.md 1.3-1.5), used only by tests.
+// Written from the formulas, sharing no code with freestand.
+
+#include <vector>
+
+namespace freestand::reference {
+
+struct HousnerBlock {
+  double half_width;   // b (m)
+  double half_height;  // h (m)
+  double gravity = 9.81;  // m/s^2
+
+  double R() const;      // pivot-to-centroid distance sqrt(b^2 + h^2)
+  double alpha() const;  // slenderness atan(b/h)
+  double p() const;      // frequency parameter sqrt(3 g / (4 R)) (rectangle)
+  double e() const;      // angular-velocity ratio across an impact: 1 - 1.5 sin^2(alpha)
+};
+
+// Amplitudes theta_1..theta_n after each impact, from release at rest at
+// theta0: cos(alpha - theta_{k+1}) = cos(alpha) + e^2 [cos(alpha - theta_k) - cos(alpha)].
+std::vector<double> amplitude_map(const HousnerBlock& block, double theta0, int n);
+
+// Time from rest at amplitude theta to the impact at theta = 0 (a quarter of
+// the nonlinear free period): integral of d(theta) / sqrt(2 p^2 [cos(alpha - theta0) -
+// cos(alpha - theta)]), by a substitution that removes the end singularity.
+double quarter_period(const HousnerBlock& block, double theta);
+
+}  // namespace freestand::reference
+
+#endif
