@@ -32,10 +32,7 @@ std::vector<std::string> split_commas(const std::string& line) {
 }
 
 // "0.1712 (EW)" -> "0.1712"; "m/s^2 (inferred)" -> "m/s^2".
-std::string before_parenthesis(const std::string& s) {
-  const std::string head = s.substr(0, s.find(" ("));
-  return head;
-}
+std::string before_parenthesis(const std::string& s) { return s.substr(0, s.find(" (")); }
 
 // Half a unit of the last printed digit of a decimal number ("658.90" -> 0.005).
 double half_last_digit(const std::string& printed) {
