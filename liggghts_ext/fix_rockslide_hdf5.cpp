@@ -54,13 +54,6 @@ void FixRockSlideHDF5::init() {
   compute_ = icompute < 0 ? nullptr : dynamic_cast<ComputeRockSlide *>(modify->compute[icompute]);
   if (!compute_)
     error->all(FLERR, ("fix rockslide/hdf5: '" + compute_id_ + "' is not a compute rockslide").c_str());
-  if (comm->me == 0 && !file_) {
-    try {
-      open_file();
-    } catch (const freestand::InputError &e) {
-      error->one(FLERR, e.what());
-    }
-  }
 }
 
 void FixRockSlideHDF5::open_file() {
@@ -90,6 +83,14 @@ void FixRockSlideHDF5::end_of_step() {
 }
 
 void FixRockSlideHDF5::write_sample() {
+  // Opened at the first sample, once the compute has resolved its table.
+  if (!file_) {
+    try {
+      open_file();
+    } catch (const freestand::InputError &e) {
+      error->one(FLERR, e.what());
+    }
+  }
   std::vector<double> row;
   row.push_back(update->atime + (update->ntimestep - update->atimestep) * update->dt);
   if (FixShakeTable *table = compute_->table()) {
