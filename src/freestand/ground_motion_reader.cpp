@@ -11,25 +11,11 @@
 #include <string_view>
 
 #include "freestand/input_error.h"
+#include "freestand/units.h"
 
 namespace freestand {
 
 namespace {
-
-// Standard acceleration of gravity g_n, m/s^2 (exact by definition, CGPM 1901).
-// PEER AT2 files are "in units of g"; some tools use 9.81 instead (0.03 % more).
-constexpr double kStandardGravity = 9.80665;
-
-struct Unit {
-  std::string_view name;  // as the user writes it
-  double to_si;           // SI value of one unit
-  bool is_velocity;       // m/s-like rather than m/s^2-like
-};
-
-constexpr Unit kUnits[] = {
-    {"g", kStandardGravity, false}, {"m/s^2", 1.0, false}, {"cm/s^2", 1e-2, false},
-    {"mm/s^2", 1e-3, false},        {"m/s", 1.0, true},    {"cm/s", 1e-2, true},
-};
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw InputError(fmt::format("{}: {}", path, what));
@@ -39,9 +25,8 @@ constexpr Unit kUnits[] = {
   throw InputError(fmt::format("{}:{}: {}", path, line, what));
 }
 
-const Unit& find_unit(const RecordSource& src) {
-  for (const Unit& u : kUnits)
-    if (u.name == src.units) return u;
+MotionUnit find_unit(const RecordSource& src) {
+  if (const auto unit = find_motion_unit(src.units)) return *unit;
   fail(src.path, fmt::format("unknown units '{}' (expected g, m/s^2, cm/s^2, mm/s^2, m/s or cm/s)",
                              src.units));
 }
@@ -325,7 +310,7 @@ std::string resolved_format(const RecordSource& src) {
 }  // namespace
 
 GroundRecord read_ground_record(const RecordSource& src) {
-  const Unit& unit = find_unit(src);
+  const MotionUnit unit = find_unit(src);
   const std::string format = resolved_format(src);
   if (format != "at2" && format != "columns" && format != "csv")
     fail(src.path, fmt::format("unknown format '{}' (expected auto, at2, columns or csv)", format));

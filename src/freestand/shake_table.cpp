@@ -7,12 +7,10 @@
 #include <set>
 
 #include "freestand/input_error.h"
+#include "freestand/units.h"
 
 namespace freestand {
 namespace {
-
-// Standard gravity: the unit "g" of accelerograms (PEER uses 980.665 cm/s^2).
-constexpr double kStandardGravity = 9.80665;
 
 class ArgCursor {
  public:
@@ -40,12 +38,12 @@ class ArgCursor {
   // An acceleration given as VALUE UNIT, converted to m/s^2.
   double acceleration(const std::string& what) {
     const double value = number(what);
-    const std::string unit = next(what + " unit");
-    if (unit == "g") return value * kStandardGravity;
-    if (unit == "m/s^2") return value;
-    if (unit == "cm/s^2") return value * 0.01;
-    throw InputError(fmt::format(
-        "fix shaketable: '{}' unit must be g, m/s^2 or cm/s^2, got '{}'", what, unit));
+    const std::string name = next(what + " unit");
+    const auto unit = find_motion_unit(name);
+    if (!unit || unit->is_velocity)
+      throw InputError(fmt::format(
+          "fix shaketable: '{}' unit must be g, m/s^2, cm/s^2 or mm/s^2, got '{}'", what, name));
+    return value * unit->to_si;
   }
 
  private:
