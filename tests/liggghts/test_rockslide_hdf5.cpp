@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -50,10 +51,14 @@ std::vector<double> read_series(const fs::path& file, const std::string& name) {
 class RockSlideHdf5 : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::absolute("rockslide_hdf5");
+    // ctest runs each test in its own process, in parallel: one folder each.
+    dir_ = fs::absolute("rockslide_hdf5_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     serial_status_ = run_example(dir_ / "serial.h5", "", 11.5);
+  }
+  static void TearDownTestSuite() {
+    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(dir_);
   }
   static fs::path dir_;
   static int serial_status_;
