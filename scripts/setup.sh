@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake pkg-config
   liggghts libliggghts-dev liggghts-doc
   libopenmpi-dev openmpi-bin
-  libeigen3-dev libhdf5-dev hdf5-tools libvtk9-dev
+  libeigen3-dev libhdf5-dev hdf5-tools libvtk9-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   python3-h5py python3-numpy
