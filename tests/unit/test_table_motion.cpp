@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -63,6 +65,8 @@ SineErrors sampled_sine_errors(int samples_per_period) {
 // w h = 2 pi / 4000 = 1.57e-3, (w h)^2 / 12 = 2.1e-7 < 1e-6.
 TEST(SampledAxisMotion, SineRecordMatchesClosedFormWithin1e6) {
   const SineErrors e = sampled_sine_errors(4000);
+  std::cout << "[validation] sine record, 4000 samples/period: relative error v " << e.velocity
+            << ", d " << e.displacement << "\n";
   EXPECT_LT(e.velocity, 1e-6);
   EXPECT_LT(e.displacement, 1e-6);
 }
@@ -73,6 +77,8 @@ TEST(SampledAxisMotion, SineRecordMatchesClosedFormWithin1e6) {
 TEST(SampledAxisMotion, SineRecordErrorIsSecondOrder) {
   const SineErrors coarse = sampled_sine_errors(250);
   const SineErrors fine = sampled_sine_errors(500);
+  std::cout << "[validation] error ratio for half the step: v " << coarse.velocity / fine.velocity
+            << ", d " << coarse.displacement / fine.displacement << "\n";
   EXPECT_GT(coarse.velocity, 1e-5);
   EXPECT_NEAR(coarse.velocity / fine.velocity, 4.0, 0.5);
   EXPECT_NEAR(coarse.displacement / fine.displacement, 4.0, 0.5);
