@@ -605,4 +605,14 @@ TEST(ShapeBench, DISABLED_QueryCost) {
                 std::chrono::duration<double, std::nano>(t2 - t1).count() / n, sink);
     EXPECT_TRUE(std::isfinite(sink));
   }
+  // Set-up costs: the hull of 1000 random points.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<Vector3d> cloud(1000);
+  for (Vector3d& p : cloud) p = Vector3d(g(rng), g(rng), g(rng));
+  const auto t0 = std::chrono::steady_clock::now();
+  const ConvexShape hull = ConvexShape::hull(cloud);
+  const auto t1 = std::chrono::steady_clock::now();
+  std::printf("[measured] hull of 1000 gaussian points: %zu faces, %.2f ms\n", hull.faces().size(),
+              std::chrono::duration<double, std::milli>(t1 - t0).count());
 }

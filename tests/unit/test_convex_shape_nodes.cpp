@@ -339,6 +339,33 @@ TEST(Nodes, BaseOnlySelection) {
   EXPECT_NEAR(area, body.pieces()[0].faces()[0].area, 1e-14);
 }
 
+TEST(Nodes, CountsForTypicalBodies) {
+  // The Duzce block (1 x 1 x 3 m) and a 20-sided column drum (r 0.5 m, 0.6 m
+  // high). Box faces are n_u x n_v grids: at h = 0.1, 11 x 11 on the base and
+  // 11 x 31 on each side.
+  const Clump block(ConvexShape::box(Vector3d(0.5, 0.5, 1.5)));
+  const Clump drum(ConvexShape::prism(0.5, 20, 0.6));
+  auto count = [](const Clump& body, double h, bool base_only, NodeLayout layout) {
+    NodeOptions o;
+    o.spacing = h;
+    o.layout = layout;
+    if (base_only) o.faces = body.base_faces();
+    return freestand::make_contact_nodes(body, o).size();
+  };
+  EXPECT_EQ(count(block, 0.1, false, NodeLayout::kSurface), 2u * 121u + 4u * 341u);
+  EXPECT_EQ(count(block, 0.1, true, NodeLayout::kSurface), 121u);
+  EXPECT_EQ(count(block, 0.1, true, NodeLayout::kBoundary), 40u);
+  EXPECT_EQ(count(block, 0.1, true, NodeLayout::kVertices), 4u);
+  for (const auto& [name, body] : {std::pair<const char*, const Clump&>{"block 1x1x3", block},
+                                   std::pair<const char*, const Clump&>{"drum r0.5 20 sides", drum}})
+    for (double h : {0.1, 0.05, 0.02})
+      std::printf("[measured] nodes, %s, h = %.2f m: surface %zu (base only %zu), boundary %zu (base %zu), "
+                  "vertices %zu (base %zu)\n",
+                  name, h, count(body, h, false, NodeLayout::kSurface), count(body, h, true, NodeLayout::kSurface),
+                  count(body, h, false, NodeLayout::kBoundary), count(body, h, true, NodeLayout::kBoundary),
+                  count(body, h, false, NodeLayout::kVertices), count(body, h, true, NodeLayout::kVertices));
+}
+
 TEST(Nodes, BadOptionsAreRejected) {
   const Clump body(ConvexShape::box(Vector3d(1, 1, 1)));
   auto message = [&](const NodeOptions& o) {
