@@ -34,6 +34,24 @@ ComputeRockSlide::ComputeRockSlide(LAMMPS *lmp, int &iarg, int narg, char **arg)
   size_array_cols = static_cast<int>(freestand::channel_names().size());
   extarray = 0;
   parse(iarg, narg, arg);
+  if (!channels_) describe_from_source();
+  allocate_array();
+}
+
+// No `body` keywords: the body fix (defined before this compute) names them.
+void ComputeRockSlide::describe_from_source() {
+  const int ifix = modify->find_fix(source_id_.c_str());
+  std::unique_ptr<RigidBodySource> adapter;
+  RigidBodySource *source = ifix < 0 ? nullptr : find_rigid_body_source(modify->fix[ifix], world, adapter);
+  std::vector<freestand::ChannelBody> bodies;
+  if (source) bodies = source->describe_bodies();
+  if (bodies.empty())
+    error->all(FLERR, ("compute rockslide: fix '" + source_id_ +
+                       "' does not describe its bodies: give 'body NAME TAG com X Y Z height H'").c_str());
+  channels_ = std::make_unique<freestand::BodyChannels>(std::move(bodies));
+}
+
+void ComputeRockSlide::allocate_array() {
   size_array_rows = static_cast<int>(channels_->bodies().size());
   memory->create(array, size_array_rows, size_array_cols, "rockslide:array");
   for (int i = 0; i < size_array_rows; ++i)
@@ -61,8 +79,7 @@ void ComputeRockSlide::parse(int iarg, int narg, char **arg) {
                          "' (expected 'table' or 'body')").c_str());
     }
   }
-  if (bodies.empty())
-    error->all(FLERR, "compute rockslide: no 'body' given (body NAME TAG com X Y Z height H)");
+  if (bodies.empty()) return;  // taken from the body fix in init()
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (supports[i] == "table") continue;
     bodies[i].support = -2;  // unknown until found

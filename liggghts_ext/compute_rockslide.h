@@ -38,6 +38,8 @@ class ComputeRockSlide : public Compute {
 
  private:
   void parse(int iarg, int narg, char **arg);
+  void allocate_array();
+  void describe_from_source();
   int parse_body(int iarg, int narg, char **arg, freestand::ChannelBody &body,
                  std::string &support);
 

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "freestand/body_channels.h"
 #include "freestand/rocking_angles.h"
 
 namespace LAMMPS_NS {
@@ -26,6 +27,9 @@ class RigidBodySource {
   // tags that do not exist (yet). Collective: every rank must call it.
   virtual void gather_poses(std::vector<freestand::BodyPose> &poses,
                             std::vector<char> &present) = 0;
+  // Names, geometry and supports of the bodies, when the source knows them
+  // (freestand's body fixes do; stock multisphere does not: empty).
+  virtual std::vector<freestand::ChannelBody> describe_bodies() { return {}; }
 };
 
 // The body source behind a fix: the fix itself when it implements

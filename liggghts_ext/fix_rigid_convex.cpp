@@ -1,0 +1,418 @@
+// fix rigid/convex: LIGGGHTS adapter over freestand's rigid-body, shape and
+// contact-law kernels. One atom per body (at its centre of mass, radius =
+// bounding sphere), so LIGGGHTS' neighbour lists and domain decomposition
+// apply; the orientation, angular momentum and contact histories live here.
+
+#include "fix_rigid_convex.h"
+
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_shaketable.h"
+#include "force.h"
+#include "freestand/contact_time_step.h"
+#include "freestand/input_error.h"
+#include "modify.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+using Eigen::Quaterniond;
+using Eigen::Vector3d;
+
+namespace {
+
+double number(const char *token, const char *what, Error *error) {
+  char *end = nullptr;
+  const double value = std::strtod(token, &end);
+  if (end == token || *end != '\0' || !std::isfinite(value))
+    error->all(FLERR, (std::string("fix rigid/convex: '") + what + "' expects a number, got '" +
+                       token + "'").c_str());
+  return value;
+}
+
+// Writes a message to screen and log on rank 0.
+void note(LAMMPS *lmp, const std::string &text) {
+  if (lmp->comm->me != 0) return;
+  if (lmp->screen) fprintf(lmp->screen, "fix rigid/convex: %s\n", text.c_str());
+  if (lmp->logfile) fprintf(lmp->logfile, "fix rigid/convex: %s\n", text.c_str());
+}
+
+}  // namespace
+
+// fix ID group rigid/convex scene FILE [table SHAKE-ID] [plane Z] [type T]
+//     [stiffness KA] [restitution E] [mu MU] [spacing H] [layout surface|boundary|vertices]
+FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "fix rigid/convex needs atom_style sphere (radius, rmass, omega, torque)");
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extvector = 1;
+  time_integrate = 1;
+
+  std::string scene_file;
+  freestand::SceneDefaults defaults;
+  parse(narg, arg, scene_file, defaults);
+  try {
+    scene_ = freestand::read_scene_file(scene_file, defaults);
+    for (const auto &interface : scene_.interfaces)
+      laws_.push_back(std::make_unique<freestand::ContactLaw>(interface.contact));
+    build_templates();
+  } catch (const freestand::InputError &e) {
+    error->all(FLERR, (std::string("fix rigid/convex: ") + e.what()).c_str());
+  }
+  for (const auto &body : scene_.bodies)
+    for (const auto &text : body.notes) note(lmp, text);
+  for (const auto &interface : scene_.interfaces)
+    for (const auto &text : interface.notes) note(lmp, text);
+
+  grow_arrays(atom->nmax);
+}
+
+// Atom::add_callback() registers the fix added last, which this fix is only
+// once its constructor has returned; so bodies are created here.
+void FixRigidConvex::post_create() {
+  atom->add_callback(0);
+  create_bodies();
+}
+
+FixRigidConvex::~FixRigidConvex() { atom->delete_callback(id, 0); }
+
+void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
+                           freestand::SceneDefaults &defaults) {
+  defaults.stiffness_per_area = 1e10;
+  for (int i = 3; i < narg; i += 2) {
+    const std::string key = arg[i];
+    if (i + 1 >= narg) error->all(FLERR, ("fix rigid/convex: '" + key + "' needs a value").c_str());
+    const char *value = arg[i + 1];
+    if (key == "scene") scene_file = value;
+    else if (key == "table") table_id_ = value;
+    else if (key == "plane") plane_z_ = number(value, "plane", error);
+    else if (key == "type") atom_type_ = static_cast<int>(number(value, "type", error));
+    else if (key == "stiffness") defaults.stiffness_per_area = number(value, "stiffness", error);
+    else if (key == "restitution") defaults.restitution = number(value, "restitution", error);
+    else if (key == "mu") defaults.mu = number(value, "mu", error);
+    else if (key == "spacing") defaults.nodes.spacing = number(value, "spacing", error);
+    else if (key == "layout") {
+      const std::string layout = value;
+      if (layout == "surface") defaults.nodes.layout = freestand::NodeLayout::kSurface;
+      else if (layout == "boundary") defaults.nodes.layout = freestand::NodeLayout::kBoundary;
+      else if (layout == "vertices") defaults.nodes.layout = freestand::NodeLayout::kVertices;
+      else error->all(FLERR, "fix rigid/convex: layout must be surface, boundary or vertices");
+    } else {
+      error->all(FLERR, ("fix rigid/convex: unknown keyword '" + key + "'").c_str());
+    }
+  }
+  if (scene_file.empty()) error->all(FLERR, "fix rigid/convex: 'scene FILE' is required");
+  if (atom_type_ < 1 || atom_type_ > atom->ntypes)
+    error->all(FLERR, "fix rigid/convex: 'type' must be an existing atom type");
+}
+
+void FixRigidConvex::build_templates() {
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const freestand::BodySpec &spec = scene_.bodies[b];
+    BodyTemplate t{spec.name, freestand::PreparedMassProperties({spec.mass, spec.inertia}, spec.name)};
+    // Nodes only where the body can touch what supports it: its base faces.
+    freestand::NodeOptions options = spec.nodes;
+    options.faces = spec.geometry.base_faces();
+    for (const freestand::ContactNode &node : freestand::make_contact_nodes(spec.geometry, options)) {
+      const auto &face = spec.geometry.pieces()[node.piece].faces()[node.face];
+      t.node_offset.push_back(node.position - spec.com);
+      t.node_area.push_back(node.area);
+      // The dashpot of a node acts on its share of the body (contact_law.h).
+      t.node_mass.push_back(spec.mass * node.area / face.area);
+    }
+    t.table_law = nullptr;
+    for (std::size_t k = 0; k < scene_.interfaces.size(); ++k)
+      if (scene_.interfaces[k].lower == "table" && scene_.interfaces[k].upper == spec.name)
+        t.table_law = laws_[k].get();
+    t.bounding_radius = spec.geometry.bounding_radius(spec.com);
+    templates_.push_back(std::move(t));
+  }
+}
+
+// Each body becomes one atom at its centre of mass, on the rank that owns
+// that point; tags follow the scene's order after any existing atoms.
+void FixRigidConvex::create_bodies() {
+  tagint local_max = 0;
+  for (int i = 0; i < atom->nlocal; ++i) local_max = std::max(local_max, atom->tag[i]);
+  tagint max_tag = 0;
+  MPI_Allreduce(&local_max, &max_tag, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  first_tag_ = max_tag + 1;
+
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const freestand::BodySpec &spec = scene_.bodies[b];
+    const Vector3d com = spec.position + spec.orientation * spec.com;
+    double x[3] = {com.x(), com.y(), com.z()};
+    const bool mine = x[0] >= domain->sublo[0] && x[0] < domain->subhi[0] &&
+                      x[1] >= domain->sublo[1] && x[1] < domain->subhi[1] &&
+                      x[2] >= domain->sublo[2] && x[2] < domain->subhi[2];
+    if (!mine) continue;
+    atom->avec->create_atom(atom_type_, x);
+    const int i = atom->nlocal - 1;
+    atom->tag[i] = first_tag_ + static_cast<tagint>(b);
+    atom->mask[i] = 1 | groupbit;
+    atom->radius[i] = templates_[b].bounding_radius;
+    atom->rmass[i] = spec.mass;
+    for (int k = 0; k < 3; ++k) {
+      atom->v[i][k] = spec.velocity[k];
+      atom->omega[i][k] = spec.omega[k];
+    }
+    BodyState &s = state_[i];
+    s.body = static_cast<int>(b);
+    s.orientation = spec.orientation;
+    s.angular_momentum = freestand::angular_momentum(spec.orientation, spec.omega, templates_[b].mass);
+    s.table_history.assign(templates_[b].node_offset.size(), freestand::ContactHistory{});
+  }
+  atom->natoms += static_cast<bigint>(scene_.bodies.size());
+  if (atom->map_style) {
+    atom->nghost = 0;
+    atom->map_init();
+    atom->map_set();
+  }
+  note(lmp, std::to_string(scene_.bodies.size()) + " bodies created, tags " +
+                std::to_string(first_tag_) + " to " +
+                std::to_string(first_tag_ + static_cast<tagint>(scene_.bodies.size()) - 1));
+}
+
+int FixRigidConvex::setmask() {
+  return FixConst::INITIAL_INTEGRATE | FixConst::POST_FORCE | FixConst::FINAL_INTEGRATE;
+}
+
+void FixRigidConvex::init() {
+  table_ = nullptr;
+  if (!table_id_.empty()) {
+    const int ifix = modify->find_fix(table_id_.c_str());
+    if (ifix >= 0) table_ = dynamic_cast<FixShakeTable *>(modify->fix[ifix]);
+    if (!table_)
+      error->all(FLERR, ("fix rigid/convex: '" + table_id_ + "' is not a fix shaketable").c_str());
+  }
+  check_time_step();
+}
+
+// The run's dt against the stability limit of each body resting on its base,
+// and the accuracy fraction of it (docs/contact-law.md).
+void FixRigidConvex::check_time_step() {
+  double limit = 1e300, recommended = 1e300;
+  for (const BodyTemplate &t : templates_) {
+    if (!t.table_law || t.node_offset.empty()) continue;
+    freestand::ContactBody body{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
+    std::vector<Vector3d> points(t.node_offset);
+    const double overlap = 0.0;
+    const freestand::ContactModes modes = freestand::resting_critical_time_step(
+        *t.table_law, points, t.node_area, Vector3d::UnitZ(), overlap, body);
+    limit = std::min(limit, modes.time_step);
+    recommended = std::min(recommended, modes.time_step * freestand::recommended_time_step_fraction(*t.table_law));
+  }
+  if (limit == 1e300) return;
+  char text[256];
+  snprintf(text, sizeof(text), "critical time step %.3g s; accurate restitution needs %.3g s or less; "
+           "timestep is %.3g s", limit, recommended, update->dt);
+  note(lmp, text);
+  try {
+    freestand::check_time_step(*templates_.front().table_law, update->dt, limit, "fix rigid/convex");
+  } catch (const freestand::InputError &e) {
+    error->all(FLERR, e.what());
+  }
+}
+
+void FixRigidConvex::setup(int vflag) { post_force(vflag); }
+
+void FixRigidConvex::initial_integrate(int) {
+  const double dt = update->dt;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    BodyState &s = state_[i];
+    if (s.body < 0) continue;
+    const freestand::PreparedMassProperties &props = templates_[s.body].mass;
+    freestand::RigidBodyState body{Vector3d(x[i]), Vector3d(v[i]), s.orientation, s.angular_momentum};
+    freestand::initial_integrate(body, props, Vector3d(f[i]), Vector3d(torque[i]), dt);
+    const Vector3d w = freestand::angular_velocity(body, props);
+    for (int k = 0; k < 3; ++k) {
+      x[i][k] = body.position[k];
+      v[i][k] = body.velocity[k];
+      omega[i][k] = w[k];
+    }
+    s.orientation = body.orientation;
+    s.angular_momentum = body.angular_momentum;
+  }
+}
+
+void FixRigidConvex::post_force(int) {
+  table_contacts_ = 0;
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (state_[i].body >= 0 && templates_[state_[i].body].table_law) table_contact(i);
+}
+
+// Contact nodes of body i against the table plane z = plane_z + d_z(t),
+// moving with the table's velocity.
+void FixRigidConvex::table_contact(int i) {
+  BodyState &s = state_[i];
+  const BodyTemplate &t = templates_[s.body];
+  const Vector3d com(atom->x[i]), v(atom->v[i]), w(atom->omega[i]);
+  Vector3d table_velocity = Vector3d::Zero();
+  double plane = plane_z_;
+  if (table_) {
+    const freestand::TableState table = table_->state();
+    table_velocity = table.velocity;
+    plane += table.displacement.z();
+  }
+  // Lowest possible node: skip bodies far above the plane.
+  if (com.z() - atom->radius[i] > plane) {
+    for (auto &h : s.table_history) h = freestand::ContactHistory{};
+    return;
+  }
+  const Eigen::Matrix3d rotation = s.orientation.toRotationMatrix();
+  Vector3d force = Vector3d::Zero(), torque = Vector3d::Zero();
+  const double dt = update->dt;
+  for (std::size_t k = 0; k < t.node_offset.size(); ++k) {
+    const Vector3d r = rotation * t.node_offset[k];
+    const double overlap = plane - (com.z() + r.z());
+    if (overlap <= 0.0) {
+      s.table_history[k] = freestand::ContactHistory{};
+      continue;
+    }
+    freestand::ContactPoint contact{Vector3d::UnitZ(), overlap, v + w.cross(r) - table_velocity,
+                                    t.node_area[k], t.node_mass[k]};
+    const freestand::ContactForce result = t.table_law->compute(contact, dt, s.table_history[k]);
+    force += result.force;
+    torque += r.cross(result.force);
+    ++table_contacts_;
+  }
+  for (int k = 0; k < 3; ++k) {
+    atom->f[i][k] += force[k];
+    atom->torque[i][k] += torque[k];
+  }
+}
+
+void FixRigidConvex::final_integrate() {
+  const double dt = update->dt;
+  double **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    BodyState &s = state_[i];
+    if (s.body < 0) continue;
+    const freestand::PreparedMassProperties &props = templates_[s.body].mass;
+    freestand::RigidBodyState body{Vector3d(atom->x[i]), Vector3d(v[i]), s.orientation,
+                                   s.angular_momentum};
+    freestand::final_integrate(body, props, Vector3d(f[i]), Vector3d(torque[i]), dt);
+    const Vector3d w = freestand::angular_velocity(body, props);
+    for (int k = 0; k < 3; ++k) {
+      v[i][k] = body.velocity[k];
+      omega[i][k] = w[k];
+    }
+    s.angular_momentum = body.angular_momentum;
+  }
+}
+
+double FixRigidConvex::compute_vector(int index) {
+  double local = 0.0;
+  if (index == 0) {
+    for (int i = 0; i < atom->nlocal; ++i) {
+      const BodyState &s = state_[i];
+      if (s.body < 0) continue;
+      freestand::RigidBodyState body{Vector3d(atom->x[i]), Vector3d(atom->v[i]), s.orientation,
+                                     s.angular_momentum};
+      local += freestand::kinetic_energy(body, templates_[s.body].mass);
+    }
+  } else {
+    local = table_contacts_;
+  }
+  double total = 0.0;
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, world);
+  return total;
+}
+
+// ---- per-atom storage that follows atoms between ranks ----------------------
+
+void FixRigidConvex::grow_arrays(int nmax) { state_.resize(nmax); }
+
+void FixRigidConvex::copy_arrays(int i, int j, int) { state_[j] = state_[i]; }
+
+
+// Layout: body, quaternion (4), angular momentum (3), node count, histories.
+int FixRigidConvex::pack_exchange(int i, double *buf) {
+  const BodyState &s = state_[i];
+  int m = 0;
+  buf[m++] = s.body;
+  for (double q : {s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z()})
+    buf[m++] = q;
+  for (int k = 0; k < 3; ++k) buf[m++] = s.angular_momentum[k];
+  buf[m++] = static_cast<double>(s.table_history.size());
+  const int per = sizeof(freestand::ContactHistory) / sizeof(double);
+  for (const auto &h : s.table_history) {
+    std::memcpy(buf + m, &h, sizeof(h));
+    m += per;
+  }
+  return m;
+}
+
+int FixRigidConvex::unpack_exchange(int nlocal, double *buf) {
+  BodyState &s = state_[nlocal];
+  int m = 0;
+  s.body = static_cast<int>(buf[m++]);
+  s.orientation = Quaterniond(buf[m], buf[m + 1], buf[m + 2], buf[m + 3]);
+  m += 4;
+  s.angular_momentum = Vector3d(buf[m], buf[m + 1], buf[m + 2]);
+  m += 3;
+  s.table_history.resize(static_cast<std::size_t>(buf[m++]));
+  const int per = sizeof(freestand::ContactHistory) / sizeof(double);
+  for (auto &h : s.table_history) {
+    std::memcpy(&h, buf + m, sizeof(h));
+    m += per;
+  }
+  return m;
+}
+
+// ---- RigidBodySource ---------------------------------------------------------
+
+int FixRigidConvex::max_tag() { return static_cast<int>(scene_.bodies.size()); }
+
+void FixRigidConvex::gather_poses(std::vector<freestand::BodyPose> &poses,
+                                  std::vector<char> &present) {
+  const int n = max_tag();
+  std::vector<double> local(8 * n, 0.0), global(8 * n, 0.0);
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const BodyState &s = state_[i];
+    if (s.body < 0) continue;
+    double *row = &local[8 * s.body];
+    row[0] = 1.0;
+    for (int k = 0; k < 3; ++k) row[1 + k] = atom->x[i][k];
+    row[4] = s.orientation.w();
+    row[5] = s.orientation.x();
+    row[6] = s.orientation.y();
+    row[7] = s.orientation.z();
+  }
+  MPI_Allreduce(local.data(), global.data(), 8 * n, MPI_DOUBLE, MPI_SUM, world);
+  poses.assign(n, freestand::BodyPose{});
+  present.assign(n, 0);
+  for (int b = 0; b < n; ++b) {
+    const double *row = &global[8 * b];
+    present[b] = row[0] > 0.5;
+    poses[b] = {Vector3d(row[1], row[2], row[3]), Quaterniond(row[4], row[5], row[6], row[7])};
+  }
+}
+
+std::vector<freestand::ChannelBody> FixRigidConvex::describe_bodies() {
+  std::vector<freestand::ChannelBody> bodies;
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const freestand::BodySpec &spec = scene_.bodies[b];
+    freestand::ChannelBody body;
+    body.name = spec.name;
+    body.index = static_cast<int>(b);
+    body.geometry = {spec.com, spec.height};
+    body.support = -1;
+    for (std::size_t k = 0; k < scene_.bodies.size(); ++k)
+      if (scene_.bodies[k].name == spec.supported_by) body.support = static_cast<int>(k);
+    body.initial_frame = spec.orientation;
+    bodies.push_back(body);
+  }
+  return bodies;
+}

@@ -1,0 +1,92 @@
+/* freestand: fix rigid/convex. Convex rigid bodies (one LIGGGHTS atom each)
+   with penalty contact against the shake-table plane; see
+   docs/fix_rigid_convex.md. */
+
+#ifdef FIX_CLASS
+
+FixStyle(rigid/convex,FixRigidConvex)
+
+#else
+
+#ifndef LMP_FIX_RIGID_CONVEX_H
+#define LMP_FIX_RIGID_CONVEX_H
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fix.h"
+#include "freestand/contact_law.h"
+#include "freestand/rigid_body.h"
+#include "freestand/scene.h"
+#include "rigid_body_source.h"
+
+namespace LAMMPS_NS {
+
+class FixShakeTable;
+
+class FixRigidConvex : public Fix, public RigidBodySource {
+ public:
+  FixRigidConvex(class LAMMPS *lmp, int narg, char **arg);
+  ~FixRigidConvex() override;
+  void post_create() override;
+  int setmask() override;
+  void init() override;
+  void setup(int vflag) override;
+  void initial_integrate(int vflag) override;
+  void post_force(int vflag) override;
+  void final_integrate() override;
+  // Global vector: [1] kinetic energy (J), [2] number of node contacts with the table.
+  double compute_vector(int i) override;
+
+  void grow_arrays(int nmax) override;
+  void copy_arrays(int i, int j, int delflag) override;
+  int pack_exchange(int i, double *buf) override;
+  int unpack_exchange(int nlocal, double *buf) override;
+
+  // RigidBodySource: bodies by body number (file order).
+  int max_tag() override;
+  void gather_poses(std::vector<freestand::BodyPose> &poses, std::vector<char> &present) override;
+  std::vector<freestand::ChannelBody> describe_bodies() override;
+
+ private:
+  // Everything about one body of the scene that does not change (cold data).
+  struct BodyTemplate {
+    std::string name;                              // from the scene
+    freestand::PreparedMassProperties mass;        // mass and inertia about the COM
+    std::vector<Eigen::Vector3d> node_offset;      // contact nodes from the COM, body frame (m)
+    std::vector<double> node_area;                 // tributary areas (m^2)
+    std::vector<double> node_mass;                 // effective mass of each node's dashpot (kg)
+    const freestand::ContactLaw *table_law;        // contact with the table, or null
+    double bounding_radius;                        // atom radius: farthest point from the COM (m)
+  };
+  // Per local atom: the body it is and its rotational state (hot data).
+  struct BodyState {
+    int body = -1;                                       // index into templates_, -1: not ours
+    Eigen::Quaterniond orientation;                      // body frame -> world
+    Eigen::Vector3d angular_momentum;                    // world (kg m^2/s)
+    std::vector<freestand::ContactHistory> table_history;  // per contact node
+  };
+
+  void parse(int narg, char **arg, std::string &scene_file, freestand::SceneDefaults &defaults);
+  void build_templates();
+  void create_bodies();
+  void check_time_step();
+  void table_contact(int i);
+
+  freestand::Scene scene_;                          // as read, with defaults applied
+  std::vector<std::unique_ptr<freestand::ContactLaw>> laws_;  // one per scene interface
+  std::vector<BodyTemplate> templates_;             // one per scene body
+  std::vector<BodyState> state_;                    // per local atom (size nmax)
+  std::string table_id_;                            // fix shaketable moving the plane, or empty
+  FixShakeTable *table_ = nullptr;                  // resolved in init()
+  double plane_z_ = 0.0;                            // table top at rest (m)
+  int atom_type_ = 1;                               // LIGGGHTS atom type of the bodies
+  tagint first_tag_ = 0;                            // tag of body 0; body k has first_tag_ + k
+  int table_contacts_ = 0;                          // node contacts with the table, this rank
+};
+
+}  // namespace LAMMPS_NS
+
+#endif
+#endif
