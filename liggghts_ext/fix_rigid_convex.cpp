@@ -88,7 +88,6 @@ FixRigidConvex::~FixRigidConvex() { atom->delete_callback(id, 0); }
 
 void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
                            freestand::SceneDefaults &defaults) {
-  defaults.stiffness_per_area = 1e10;
   for (int i = 3; i < narg; i += 2) {
     const std::string key = arg[i];
     if (i + 1 >= narg) error->all(FLERR, ("fix rigid/convex: '" + key + "' needs a value").c_str());

@@ -53,7 +53,7 @@ struct Scene {
 // Defaults for what a scene leaves out (documented in docs/fix_rigid_convex.md).
 struct SceneDefaults {
   double density = 2700.0;                 // kg/m^3 (marble), when neither mass nor density is given
-  double stiffness_per_area = 0.0;         // N/m^3; 0: derived from the body below (see .cpp)
+  double stiffness_per_area = 1e10;        // N/m^3 (stone on stone: E ~ 5e10 Pa over ~5 m)
   double restitution = 0.1;                // flat face-on impact
   double mu = 0.6;                         // friction when none is stated
   NodeOptions nodes;                       // contact nodes when a body states none
