@@ -297,6 +297,8 @@ PlaneDistance ConvexShape::max_plane_distance(const Vector3d& x) const {
       out.face = f;
     }
   }
+  // A NaN point (a body that blew up) must not look deeply inside.
+  if (out.face < 0) out = {std::numeric_limits<double>::quiet_NaN(), 0};
   return out;
 }
 

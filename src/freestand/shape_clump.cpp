@@ -230,7 +230,7 @@ ClumpDistance Clump::signed_distance(const Vector3d& x) const {
   double deepest = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < pieces_.size(); ++i) {
     const ConvexShape& p = pieces_[i];
-    if (p.max_plane_distance(x).value > 0.0) continue;
+    if (!(p.max_plane_distance(x).value <= 0.0)) continue;  // outside (or a NaN point)
     double value = -std::numeric_limits<double>::infinity();
     int face = -1;
     for (int f : open_faces_[i]) {

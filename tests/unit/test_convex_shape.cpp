@@ -490,6 +490,9 @@ TEST(ConvexQuery, OutsidePointsNearFacesEdgesAndVertices) {
   d = b.signed_distance(Vector3d(0.5, 0.0, 1.0));
   EXPECT_EQ(d.distance, 0.0);
   EXPECT_EQ(d.face, 3);
+  // A NaN point (a body that blew up) gives NaN, not a crash.
+  EXPECT_TRUE(std::isnan(b.signed_distance(Vector3d(NAN, 0, 0)).distance));
+  EXPECT_TRUE(std::isnan(b.max_plane_distance(Vector3d(0, NAN, 0)).value));
 }
 
 TEST(ConvexQuery, RandomPointsSatisfyTheProjectionConditions) {
@@ -567,9 +570,10 @@ TEST(ShapeErrors, InvalidInputIsRejectedWithAMessage) {
   has(error_of([] { ConvexShape::box(Vector3d(1, 1, 1)).transformed(-Matrix3d::Identity(), Vector3d::Zero()); }),
       "must be a proper rotation");
   // A non-convex surface handed to the loop constructor.
-  std::vector<Vector3d> v = ConvexShape::box(Vector3d(1, 1, 1)).vertices();
+  const ConvexShape cube = ConvexShape::box(Vector3d(1, 1, 1));
+  std::vector<Vector3d> v = cube.vertices();
   std::vector<std::vector<int>> loops;
-  for (const auto& f : ConvexShape::box(Vector3d(1, 1, 1)).faces()) loops.push_back(f.loop);
+  for (const auto& f : cube.faces()) loops.push_back(f.loop);
   v[6] = Vector3d(0.5, 0.5, 1.5);  // dent the top corner inward: faces no longer planar
   has(error_of([&] { ConvexShape::from_loops(v, loops, "dented"); }), "dented: ");
 }

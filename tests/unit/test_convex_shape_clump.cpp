@@ -174,6 +174,8 @@ TEST(ShapeClump, UnionDistanceIgnoresGluedFaces) {
   // In the inner corner of the L, outside: 0.05 from both the low top and the tall -x face.
   d = c.signed_distance(Vector3d(0.15, 0.0, 0.45));
   EXPECT_NEAR(d.surface.distance, 0.05, 1e-12);
+  // A NaN point gives NaN.
+  EXPECT_TRUE(std::isnan(c.signed_distance(Vector3d(0.3, NAN, 0.41)).surface.distance));
 }
 
 TEST(ShapeClump, OverlappingPiecesAreRejected) {
