@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "error.h"
+#include "style_args.h"
 #include "fix_shaketable.h"
 #include "freestand/input_error.h"
 #include "memory.h"
@@ -14,19 +15,6 @@
 #include "update.h"
 
 using namespace LAMMPS_NS;
-
-namespace {
-
-double number(const char *token, const char *what, Error *error) {
-  char *end = nullptr;
-  const double value = std::strtod(token, &end);
-  if (end == token || *end != '\0' || !std::isfinite(value))
-    error->all(FLERR, (std::string("compute rockslide: '") + what + "' expects a number, got '" +
-                       token + "'").c_str());
-  return value;
-}
-
-}  // namespace
 
 ComputeRockSlide::ComputeRockSlide(LAMMPS *lmp, int &iarg, int narg, char **arg)
     : Compute(lmp, iarg, narg, arg) {
@@ -101,7 +89,7 @@ int ComputeRockSlide::parse_body(int iarg, int narg, char **arg, freestand::Chan
                                  std::string &support) {
   if (iarg + 2 > narg) error->all(FLERR, "compute rockslide: 'body' needs NAME TAG");
   body.name = arg[iarg];
-  const double tag = number(arg[iarg + 1], "body TAG", error);
+  const double tag = freestand::parse_number(error, "compute rockslide", "body TAG", arg[iarg + 1]);
   if (tag < 1 || tag != std::floor(tag))
     error->all(FLERR, ("compute rockslide: body '" + body.name + "' TAG must be a positive integer").c_str());
   body.index = static_cast<int>(tag) - 1;
@@ -110,11 +98,11 @@ int ComputeRockSlide::parse_body(int iarg, int narg, char **arg, freestand::Chan
   while (iarg < narg && std::strcmp(arg[iarg], "body") && std::strcmp(arg[iarg], "table")) {
     const std::string key = arg[iarg];
     if (key == "com" && iarg + 3 < narg) {
-      for (int k = 0; k < 3; ++k) body.geometry.com[k] = number(arg[iarg + 1 + k], "com", error);
+      for (int k = 0; k < 3; ++k) body.geometry.com[k] = freestand::parse_number(error, "compute rockslide", "com", arg[iarg + 1 + k]);
       have_com = true;
       iarg += 4;
     } else if (key == "height" && iarg + 1 < narg) {
-      body.geometry.height = number(arg[iarg + 1], "height", error);
+      body.geometry.height = freestand::parse_number(error, "compute rockslide", "height", arg[iarg + 1]);
       if (body.geometry.height <= 0)
         error->all(FLERR, ("compute rockslide: body '" + body.name + "' height must be > 0").c_str());
       have_height = true;
@@ -124,8 +112,8 @@ int ComputeRockSlide::parse_body(int iarg, int narg, char **arg, freestand::Chan
       iarg += 2;
     } else if (key == "rotate" && iarg + 4 < narg) {
       Eigen::Vector3d axis;
-      for (int k = 0; k < 3; ++k) axis[k] = number(arg[iarg + 1 + k], "rotate axis", error);
-      const double angle = number(arg[iarg + 4], "rotate angle", error);
+      for (int k = 0; k < 3; ++k) axis[k] = freestand::parse_number(error, "compute rockslide", "rotate axis", arg[iarg + 1 + k]);
+      const double angle = freestand::parse_number(error, "compute rockslide", "rotate angle", arg[iarg + 4]);
       if (axis.norm() == 0) error->all(FLERR, "compute rockslide: 'rotate' axis must be nonzero");
       body.initial_frame = Eigen::AngleAxisd(angle, axis.normalized());
       iarg += 5;

@@ -16,6 +16,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "style_args.h"
 #include "fix_shaketable.h"
 #include "force.h"
 #include "freestand/contact_time_step.h"
@@ -28,15 +29,6 @@ using Eigen::Quaterniond;
 using Eigen::Vector3d;
 
 namespace {
-
-double number(const char *token, const char *what, Error *error) {
-  char *end = nullptr;
-  const double value = std::strtod(token, &end);
-  if (end == token || *end != '\0' || !std::isfinite(value))
-    error->all(FLERR, (std::string("fix rigid/convex: '") + what + "' expects a number, got '" +
-                       token + "'").c_str());
-  return value;
-}
 
 // Writes a message to screen and log on rank 0.
 void note(LAMMPS *lmp, const std::string &text) {
@@ -94,12 +86,12 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
     const char *value = arg[i + 1];
     if (key == "scene") scene_file = value;
     else if (key == "table") table_id_ = value;
-    else if (key == "plane") plane_z_ = number(value, "plane", error);
-    else if (key == "type") atom_type_ = static_cast<int>(number(value, "type", error));
-    else if (key == "stiffness") defaults.stiffness_per_area = number(value, "stiffness", error);
-    else if (key == "restitution") defaults.restitution = number(value, "restitution", error);
-    else if (key == "mu") defaults.mu = number(value, "mu", error);
-    else if (key == "spacing") defaults.nodes.spacing = number(value, "spacing", error);
+    else if (key == "plane") plane_z_ = freestand::parse_number(error, "fix rigid/convex", "plane", value);
+    else if (key == "type") atom_type_ = static_cast<int>(freestand::parse_number(error, "fix rigid/convex", "type", value));
+    else if (key == "stiffness") defaults.stiffness_per_area = freestand::parse_number(error, "fix rigid/convex", "stiffness", value);
+    else if (key == "restitution") defaults.restitution = freestand::parse_number(error, "fix rigid/convex", "restitution", value);
+    else if (key == "mu") defaults.mu = freestand::parse_number(error, "fix rigid/convex", "mu", value);
+    else if (key == "spacing") defaults.nodes.spacing = freestand::parse_number(error, "fix rigid/convex", "spacing", value);
     else if (key == "layout") {
       const std::string layout = value;
       if (layout == "surface") defaults.nodes.layout = freestand::NodeLayout::kSurface;
@@ -376,27 +368,15 @@ int FixRigidConvex::max_tag() { return static_cast<int>(scene_.bodies.size()); }
 
 void FixRigidConvex::gather_poses(std::vector<freestand::BodyPose> &poses,
                                   std::vector<char> &present) {
-  const int n = max_tag();
-  std::vector<double> local(8 * n, 0.0), global(8 * n, 0.0);
+  PoseGatherer gatherer(max_tag());
   for (int i = 0; i < atom->nlocal; ++i) {
     const BodyState &s = state_[i];
     if (s.body < 0) continue;
-    double *row = &local[8 * s.body];
-    row[0] = 1.0;
-    for (int k = 0; k < 3; ++k) row[1 + k] = atom->x[i][k];
-    row[4] = s.orientation.w();
-    row[5] = s.orientation.x();
-    row[6] = s.orientation.y();
-    row[7] = s.orientation.z();
+    const double quaternion[4] = {s.orientation.w(), s.orientation.x(), s.orientation.y(),
+                                  s.orientation.z()};
+    gatherer.add(s.body, atom->x[i], quaternion);
   }
-  MPI_Allreduce(local.data(), global.data(), 8 * n, MPI_DOUBLE, MPI_SUM, world);
-  poses.assign(n, freestand::BodyPose{});
-  present.assign(n, 0);
-  for (int b = 0; b < n; ++b) {
-    const double *row = &global[8 * b];
-    present[b] = row[0] > 0.5;
-    poses[b] = {Vector3d(row[1], row[2], row[3]), Quaterniond(row[4], row[5], row[6], row[7])};
-  }
+  gatherer.gather(world, poses, present);
 }
 
 std::vector<freestand::ChannelBody> FixRigidConvex::describe_bodies() {

@@ -10,6 +10,7 @@
 
 #include "comm.h"
 #include "error.h"
+#include "style_args.h"
 #include "freestand/input_error.h"
 #include "update.h"
 
@@ -23,10 +24,8 @@ std::vector<std::string> motion_args(int narg, char **arg, double &plane_z, Erro
   std::vector<std::string> args;
   for (int i = 3; i < narg; ++i) {
     if (!std::strcmp(arg[i], "plane")) {
-      char *end = nullptr;
-      if (i + 1 < narg) plane_z = std::strtod(arg[++i], &end);
-      if (!end || *end != '\0' || !std::isfinite(plane_z))
-        error->all(FLERR, "fix shaketable: 'plane' needs a height in m");
+      if (i + 1 >= narg) error->all(FLERR, "fix shaketable: 'plane' needs a height in m");
+      plane_z = freestand::parse_number(error, "fix shaketable", "plane", arg[++i]);
     } else {
       args.emplace_back(arg[i]);
     }

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "fix_multisphere.h"
@@ -23,26 +24,17 @@ class MultisphereBodySource : public RigidBodySource {
 
   void gather_poses(std::vector<freestand::BodyPose> &poses, std::vector<char> &present) override {
     const int n = max_tag();
-    // 8 numbers per body: present flag, xcm (3), quaternion w x y z (4).
-    std::vector<double> local(8 * n, 0.0), global(8 * n, 0.0);
+    PoseGatherer gatherer(n);
     Multisphere &bodies = fix_->data();
     for (int i = 0; i < bodies.n_body(); ++i) {
       const int tag = bodies.tag(i);
       if (tag < 1 || tag > n) continue;
-      double *row = &local[8 * (tag - 1)];
-      row[0] = 1.0;
-      bodies.xcm(row + 1, i);
-      bodies.quat(row + 4, i);
+      double com[3], quaternion[4];
+      bodies.xcm(com, i);
+      bodies.quat(quaternion, i);
+      gatherer.add(tag - 1, com, quaternion);
     }
-    MPI_Allreduce(local.data(), global.data(), 8 * n, MPI_DOUBLE, MPI_SUM, world_);
-    poses.assign(n, freestand::BodyPose{});
-    present.assign(n, 0);
-    for (int t = 0; t < n; ++t) {
-      const double *row = &global[8 * t];
-      present[t] = row[0] > 0.5;
-      poses[t].com = Eigen::Vector3d(row[1], row[2], row[3]);
-      poses[t].orientation = Eigen::Quaterniond(row[4], row[5], row[6], row[7]).normalized();
-    }
+    gatherer.gather(world_, poses, present);
   }
 
  private:
@@ -51,6 +43,29 @@ class MultisphereBodySource : public RigidBodySource {
 };
 
 }  // namespace
+
+void PoseGatherer::add(int index, const double com[3], const double quaternion_wxyz[4]) {
+  double *row = &rows_[kRow * index];
+  row[0] = 1.0;
+  std::copy(com, com + 3, row + 1);
+  std::copy(quaternion_wxyz, quaternion_wxyz + 4, row + 4);
+}
+
+void PoseGatherer::gather(MPI_Comm world, std::vector<freestand::BodyPose> &poses,
+                          std::vector<char> &present) {
+  std::vector<double> global(rows_.size(), 0.0);
+  MPI_Allreduce(rows_.data(), global.data(), static_cast<int>(rows_.size()), MPI_DOUBLE, MPI_SUM,
+                world);
+  const std::size_t n = rows_.size() / kRow;
+  poses.assign(n, freestand::BodyPose{});
+  present.assign(n, 0);
+  for (std::size_t b = 0; b < n; ++b) {
+    const double *row = &global[kRow * b];
+    present[b] = row[0] > 0.5;
+    poses[b].com = Eigen::Vector3d(row[1], row[2], row[3]);
+    poses[b].orientation = Eigen::Quaterniond(row[4], row[5], row[6], row[7]).normalized();
+  }
+}
 
 RigidBodySource *find_rigid_body_source(Fix *fix, MPI_Comm world,
                                         std::unique_ptr<RigidBodySource> &adapter) {

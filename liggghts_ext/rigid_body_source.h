@@ -32,6 +32,20 @@ class RigidBodySource {
   virtual std::vector<freestand::ChannelBody> describe_bodies() { return {}; }
 };
 
+// Poses of bodies spread over ranks, gathered on every rank: each rank adds
+// the bodies it owns, then gather() sums over ranks (each body is owned by
+// exactly one rank).
+class PoseGatherer {
+ public:
+  explicit PoseGatherer(int bodies) : rows_(kRow * bodies, 0.0) {}
+  void add(int index, const double com[3], const double quaternion_wxyz[4]);
+  void gather(MPI_Comm world, std::vector<freestand::BodyPose> &poses, std::vector<char> &present);
+
+ private:
+  static constexpr int kRow = 8;  // present flag, com (3), quaternion w x y z (4)
+  std::vector<double> rows_;      // kRow numbers per body, zero where absent
+};
+
 // The body source behind a fix: the fix itself when it implements
 // RigidBodySource, an adapter kept in `adapter` for stock fix multisphere,
 // or null when the fix integrates no rigid bodies.
