@@ -7,6 +7,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -49,6 +50,8 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
   global_freq = 1;
   extvector = 1;
   time_integrate = 1;
+  restart_global = 1;
+  restart_peratom = 1;
 
   std::string scene_file;
   freestand::SceneDefaults defaults;
@@ -67,16 +70,25 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
     for (const auto &text : interface.notes) note(lmp, text);
 
   grow_arrays(atom->nmax);
-}
-
-// Atom::add_callback() registers the fix added last, which this fix is only
-// once its constructor has returned; so bodies are created here.
-void FixRigidConvex::post_create() {
+  // Atom::add_callback() registers the fix whose slot in Modify is still
+  // empty, i.e. the one under construction: it must be called from here.
   atom->add_callback(0);
-  create_bodies();
+  atom->add_callback(1);
 }
 
-FixRigidConvex::~FixRigidConvex() { atom->delete_callback(id, 0); }
+// Bodies are created once the fix is complete (restart data, if any, has
+// then been applied: a restarted run keeps its bodies).
+void FixRigidConvex::post_create() {
+  if (modify->have_restart_data(this))
+    note(lmp, "bodies continue from the restart file (tags from " + std::to_string(first_tag_) + ")");
+  else
+    create_bodies();
+}
+
+FixRigidConvex::~FixRigidConvex() {
+  atom->delete_callback(id, 0);
+  atom->delete_callback(id, 1);
+}
 
 void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
                            freestand::SceneDefaults &defaults) {
@@ -337,10 +349,10 @@ int FixRigidConvex::pack_exchange(int i, double *buf) {
     buf[m++] = q;
   for (int k = 0; k < 3; ++k) buf[m++] = s.angular_momentum[k];
   buf[m++] = static_cast<double>(s.table_history.size());
-  const int per = sizeof(freestand::ContactHistory) / sizeof(double);
   for (const auto &h : s.table_history) {
-    std::memcpy(buf + m, &h, sizeof(h));
-    m += per;
+    std::copy(h.xi, h.xi + 3, buf + m);
+    buf[m + 3] = h.sliding;
+    m += freestand::kContactHistorySize;
   }
   return m;
 }
@@ -354,12 +366,50 @@ int FixRigidConvex::unpack_exchange(int nlocal, double *buf) {
   s.angular_momentum = Vector3d(buf[m], buf[m + 1], buf[m + 2]);
   m += 3;
   s.table_history.resize(static_cast<std::size_t>(buf[m++]));
-  const int per = sizeof(freestand::ContactHistory) / sizeof(double);
   for (auto &h : s.table_history) {
-    std::memcpy(&h, buf + m, sizeof(h));
-    m += per;
+    std::copy(buf + m, buf + m + 3, h.xi);
+    h.sliding = buf[m + 3];
+    m += freestand::kContactHistorySize;
   }
   return m;
+}
+
+// ---- restart files: the same layout as exchange, behind a length ---------------
+
+int FixRigidConvex::pack_restart(int i, double *buf) {
+  const int m = pack_exchange(i, buf + 1) + 1;
+  buf[0] = m;
+  return m;
+}
+
+void FixRigidConvex::unpack_restart(int nlocal, int nth) {
+  double *extra = atom->extra[nlocal];
+  int m = 0;
+  for (int k = 0; k < nth; ++k) m += static_cast<int>(extra[m]);
+  unpack_exchange(nlocal, extra + m + 1);
+}
+
+int FixRigidConvex::size_restart(int nlocal) {
+  // length, body, quaternion (4), angular momentum (3), node count, histories
+  return 1 + 9 + freestand::kContactHistorySize * static_cast<int>(state_[nlocal].table_history.size());
+}
+
+int FixRigidConvex::maxsize_restart() {
+  int most = 0;
+  for (int i = 0; i < atom->nlocal; ++i) most = std::max(most, size_restart(i));
+  return most;
+}
+
+void FixRigidConvex::write_restart(FILE *fp) {
+  if (comm->me != 0) return;
+  const double list[1] = {static_cast<double>(first_tag_)};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 1, fp);
+}
+
+void FixRigidConvex::restart(char *buf) {
+  first_tag_ = static_cast<tagint>(reinterpret_cast<double *>(buf)[0]);
 }
 
 // ---- RigidBodySource ---------------------------------------------------------
@@ -390,7 +440,7 @@ std::vector<freestand::ChannelBody> FixRigidConvex::describe_bodies() {
     body.support = -1;
     for (std::size_t k = 0; k < scene_.bodies.size(); ++k)
       if (scene_.bodies[k].name == spec.supported_by) body.support = static_cast<int>(k);
-    body.initial_frame = spec.orientation;
+    body.source_frame_is_own = true;  // orientations here are the body's own frame
     bodies.push_back(body);
   }
   return bodies;

@@ -42,7 +42,9 @@ std::vector<ModeChannels> BodyChannels::update(const std::vector<BodyPose>& sour
     if (k < 0 || k >= static_cast<int>(source_poses.size()) || !present[k]) continue;
     const BodyPose& pose = source_poses[k];
     if (!frame_offset_[i])
-      frame_offset_[i] = pose.orientation.conjugate() * bodies_[i].initial_frame;
+      frame_offset_[i] = bodies_[i].source_frame_is_own
+                             ? Eigen::Quaterniond::Identity()
+                             : pose.orientation.conjugate() * bodies_[i].initial_frame;
     own_[i] = {pose.com, (pose.orientation * *frame_offset_[i]).normalized()};
     known_[i] = 1;
   }

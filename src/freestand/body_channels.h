@@ -21,6 +21,7 @@ struct ChannelBody {
   int support = -1;                  // index into the ChannelBody list of the body below; -1: the table
   Eigen::Quaterniond initial_frame = Eigen::Quaterniond::Identity();  // body's own frame at the
                                      // first update, relative to the world
+  bool source_frame_is_own = false;  // the integrator reports the body's own frame (no offset)
 };
 
 // The channel names, in the order of ModeChannels' fields.

@@ -11,6 +11,7 @@
 
 #include "../reference/housner.h"
 #include "../reference/newmark.h"
+#include "liggghts_session.h"
 #include "validation_support.h"
 
 namespace fs = std::filesystem;
@@ -95,4 +96,33 @@ TEST(RigidConvex, SlidingOnSineTableMatchesNewmark) {
             << " m (" << 100 * worst / peak << " % of the peak)\n";
   EXPECT_GT(peak, 0.01);
   EXPECT_LT(worst, 0.02 * peak);
+}
+
+TEST(RigidConvex, RestartContinuesIdentically) {
+  // write_restart, read_restart and the same fix again: the continued run
+  // must match the uninterrupted one exactly (same arithmetic on the same
+  // state; restart files store doubles exactly).
+  const fs::path dir = fv::fresh_dir("rigid_convex_restart");
+  const std::string scene = fv::source_path("inputs/convex/free_rocking_block.json");
+  const std::string restart = (dir / "state.restart").string();
+  const std::string body = "fix bodies all rigid/convex scene " + scene + "\n"
+                           "fix grav all gravity 9.81 vector 0 0 -1\n"
+                           "compute rs all rockslide bodies\n"
+                           "thermo_style custom step c_rs[1][1] f_bodies[1]\nthermo 1000\n";
+  double rock_uninterrupted, energy_uninterrupted;
+  {
+    freestand::testing::LiggghtsSession session;
+    session.commands(std::string(kSetup) + "timestep 2e-5\n" + body);
+    session.commands("run 20000\nwrite_restart " + restart + "\nrun 20000");
+    rock_uninterrupted = session.equal("c_rs[1][1]");
+    energy_uninterrupted = session.equal("f_bodies[1]");
+  }
+  freestand::testing::LiggghtsSession session;
+  session.commands("read_restart " + restart + "\natom_modify sort 0 0.0\nneighbor 0.01 bin\n"
+                   "neigh_modify delay 0 binsize 0.5\ntimestep 2e-5\n" + body + "run 20000");
+  std::cout << "[validation] restart: rock_x " << session.equal("c_rs[1][1]") << " vs "
+            << rock_uninterrupted << "\n";
+  EXPECT_EQ(session.equal("c_rs[1][1]"), rock_uninterrupted);
+  EXPECT_EQ(session.equal("f_bodies[1]"), energy_uninterrupted);
+  EXPECT_GT(energy_uninterrupted, 0.1);  // it is rocking, not at rest
 }
