@@ -43,6 +43,12 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   void copy_arrays(int i, int j, int delflag) override;
   int pack_exchange(int i, double *buf) override;
   int unpack_exchange(int nlocal, double *buf) override;
+  int pack_restart(int i, double *buf) override;
+  void unpack_restart(int nlocal, int nth) override;
+  int size_restart(int nlocal) override;
+  int maxsize_restart() override;
+  void write_restart(FILE *fp) override;
+  void restart(char *buf) override;
 
   // RigidBodySource: bodies by body number (file order).
   int max_tag() override;
