@@ -38,10 +38,29 @@ void note(LAMMPS *lmp, const std::string &text) {
   if (lmp->logfile) fprintf(lmp->logfile, "fix rigid/convex: %s\n", text.c_str());
 }
 
+// `tangential_damping VALUE|normal`, read ahead of parse(): the damping ratio
+// zeta_t of every interface's tangential dashpot, or "normal" for zeta_t =
+// the interface's own normal zeta. Returns -1 when absent, -2 for "normal".
+double tangential_damping_keyword(int narg, char **arg, Error *error) {
+  double value = -1.0;
+  for (int i = 3; i + 1 < narg; i += 2) {
+    if (std::strcmp(arg[i], "tangential_damping") != 0) continue;
+    if (std::strcmp(arg[i + 1], "normal") == 0) {
+      value = -2.0;
+    } else {
+      value = freestand::parse_number(error, "fix rigid/convex", "tangential_damping", arg[i + 1]);
+      if (value < 0.0)
+        error->all(FLERR, "fix rigid/convex: tangential_damping must be >= 0 or 'normal'");
+    }
+  }
+  return value;
+}
+
 }  // namespace
 
 // fix ID group rigid/convex scene FILE [table SHAKE-ID] [plane Z] [type T]
 //     [stiffness KA] [restitution E] [mu MU] [spacing H] [layout surface|boundary|vertices]
+//     [tangential_damping ZT|normal]
 FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix rigid/convex needs atom_style sphere (radius, rmass, omega, torque)");
@@ -58,6 +77,15 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
   parse(narg, arg, scene_file, defaults);
   try {
     scene_ = freestand::read_scene_file(scene_file, defaults);
+    // Tangential dashpot (docs/fix_rigid_convex.md, "Housner's limit"): with
+    // zeta_t = zeta the tangential force of an impact rises and decays with the
+    // normal one instead of lagging behind it through the undamped spring.
+    const double tangential_damping = tangential_damping_keyword(narg, arg, error);
+    if (tangential_damping != -1.0)
+      for (auto &interface : scene_.interfaces)
+        interface.contact.tangential_damping_ratio =
+            tangential_damping >= 0.0 ? tangential_damping
+                                      : freestand::ContactLaw(interface.contact).damping_ratio();
     for (const auto &interface : scene_.interfaces)
       laws_.push_back(std::make_unique<freestand::ContactLaw>(interface.contact));
     build_templates();
@@ -103,6 +131,7 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
     else if (key == "stiffness") defaults.stiffness_per_area = freestand::parse_number(error, "fix rigid/convex", "stiffness", value);
     else if (key == "restitution") defaults.restitution = freestand::parse_number(error, "fix rigid/convex", "restitution", value);
     else if (key == "mu") defaults.mu = freestand::parse_number(error, "fix rigid/convex", "mu", value);
+    else if (key == "tangential_damping") continue;  // tangential_damping_keyword()
     else if (key == "spacing") defaults.nodes.spacing = freestand::parse_number(error, "fix rigid/convex", "spacing", value);
     else if (key == "layout") {
       const std::string layout = value;
