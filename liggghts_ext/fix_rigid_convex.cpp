@@ -20,6 +20,7 @@
 #include "style_args.h"
 #include "fix_shaketable.h"
 #include "force.h"
+#include "freestand/body_contact.h"
 #include "freestand/contact_time_step.h"
 #include "freestand/input_error.h"
 #include "modify.h"
@@ -71,6 +72,7 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
   time_integrate = 1;
   restart_global = 1;
   restart_peratom = 1;
+  comm_forward = 5;  // body index and orientation of ghosts
 
   std::string scene_file;
   freestand::SceneDefaults defaults;
@@ -88,6 +90,16 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
                                       : freestand::ContactLaw(interface.contact).damping_ratio();
     for (const auto &interface : scene_.interfaces)
       laws_.push_back(std::make_unique<freestand::ContactLaw>(interface.contact));
+    // Bodies that touch without a stated interface (neighbours in a wall,
+    // the sides of a statue and its pedestal) use the fix's defaults.
+    freestand::ContactParams fallback;
+    fallback.stiffness_per_area = defaults.stiffness_per_area;
+    fallback.restitution = defaults.restitution;
+    fallback.mu_s = fallback.mu_k = defaults.mu;
+    if (tangential_damping != -1.0)
+      fallback.tangential_damping_ratio =
+          tangential_damping >= 0.0 ? tangential_damping : freestand::ContactLaw(fallback).damping_ratio();
+    default_law_ = std::make_unique<freestand::ContactLaw>(fallback);
     build_templates();
   } catch (const freestand::InputError &e) {
     error->all(FLERR, (std::string("fix rigid/convex: ") + e.what()).c_str());
@@ -167,6 +179,10 @@ void FixRigidConvex::build_templates() {
       if (scene_.interfaces[k].lower == "table" && scene_.interfaces[k].upper == spec.name)
         t.table_law = laws_[k].get();
     t.bounding_radius = spec.geometry.bounding_radius(spec.com);
+    // Against other bodies every exposed face can touch.
+    t.contact_model = std::make_shared<freestand::BodyContactModel>(
+        spec.geometry, spec.com, freestand::make_contact_nodes(spec.geometry, spec.nodes));
+    t.bounding_radius = std::max(t.bounding_radius, t.contact_model->bounding_radius());
     templates_.push_back(std::move(t));
   }
 }
@@ -216,7 +232,8 @@ void FixRigidConvex::create_bodies() {
 }
 
 int FixRigidConvex::setmask() {
-  return FixConst::INITIAL_INTEGRATE | FixConst::POST_FORCE | FixConst::FINAL_INTEGRATE;
+  return FixConst::INITIAL_INTEGRATE | FixConst::PRE_FORCE | FixConst::POST_FORCE |
+         FixConst::FINAL_INTEGRATE;
 }
 
 void FixRigidConvex::init() {
@@ -257,6 +274,58 @@ void FixRigidConvex::check_time_step() {
 }
 
 void FixRigidConvex::setup(int vflag) { post_force(vflag); }
+
+// Ghost bodies need their body index and orientation before pair convex
+// computes contacts; positions and velocities come with LIGGGHTS' own comm.
+void FixRigidConvex::setup_pre_force(int) { comm->forward_comm_fix(this); }
+
+void FixRigidConvex::pre_force(int) { comm->forward_comm_fix(this); }
+
+int FixRigidConvex::pack_comm(int n, int *list, double *buf, int, int *) {
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    const BodyState &s = state_[list[k]];
+    buf[m++] = s.body;
+    buf[m++] = s.orientation.w();
+    buf[m++] = s.orientation.x();
+    buf[m++] = s.orientation.y();
+    buf[m++] = s.orientation.z();
+  }
+  return m;
+}
+
+void FixRigidConvex::unpack_comm(int n, int first, double *buf) {
+  int m = 0;
+  for (int i = first; i < first + n; ++i) {
+    BodyState &s = state_[i];
+    s.body = static_cast<int>(buf[m]);
+    s.orientation = Quaterniond(buf[m + 1], buf[m + 2], buf[m + 3], buf[m + 4]);
+    m += 5;
+  }
+}
+
+const freestand::ContactLaw &FixRigidConvex::law_between(int lower, int upper) const {
+  const std::string &a = scene_.bodies[lower].name, &b = scene_.bodies[upper].name;
+  for (std::size_t k = 0; k < scene_.interfaces.size(); ++k) {
+    const auto &interface = scene_.interfaces[k];
+    if ((interface.lower == a && interface.upper == b) || (interface.lower == b && interface.upper == a))
+      return *laws_[k];
+  }
+  return *default_law_;
+}
+
+double FixRigidConvex::largest_radius() const {
+  double largest = 0.0;
+  for (const BodyTemplate &t : templates_) largest = std::max(largest, t.bounding_radius);
+  return largest;
+}
+
+FixRigidConvex::PairHistory &FixRigidConvex::pair_history(int i, tagint partner) {
+  for (PairHistory &h : state_[i].pairs)
+    if (h.partner == partner) return h;
+  state_[i].pairs.push_back(PairHistory{partner, {}});
+  return state_[i].pairs.back();
+}
 
 void FixRigidConvex::initial_integrate(int) {
   const double dt = update->dt;
@@ -383,6 +452,17 @@ int FixRigidConvex::pack_exchange(int i, double *buf) {
     buf[m + 3] = h.sliding;
     m += freestand::kContactHistorySize;
   }
+  buf[m++] = static_cast<double>(s.pairs.size());
+  for (const PairHistory &pair : s.pairs) {
+    buf[m++] = static_cast<double>(pair.partner);
+    buf[m++] = static_cast<double>(pair.entries.size());
+    for (const auto &entry : pair.entries) {
+      buf[m++] = static_cast<double>(entry.first);
+      std::copy(entry.second.xi, entry.second.xi + 3, buf + m);
+      buf[m + 3] = entry.second.sliding;
+      m += freestand::kContactHistorySize;
+    }
+  }
   return m;
 }
 
@@ -399,6 +479,17 @@ int FixRigidConvex::unpack_exchange(int nlocal, double *buf) {
     std::copy(buf + m, buf + m + 3, h.xi);
     h.sliding = buf[m + 3];
     m += freestand::kContactHistorySize;
+  }
+  s.pairs.resize(static_cast<std::size_t>(buf[m++]));
+  for (PairHistory &pair : s.pairs) {
+    pair.partner = static_cast<tagint>(buf[m++]);
+    pair.entries.resize(static_cast<std::size_t>(buf[m++]));
+    for (auto &entry : pair.entries) {
+      entry.first = static_cast<std::uint64_t>(buf[m++]);
+      std::copy(buf + m, buf + m + 3, entry.second.xi);
+      entry.second.sliding = buf[m + 3];
+      m += freestand::kContactHistorySize;
+    }
   }
   return m;
 }
@@ -419,8 +510,13 @@ void FixRigidConvex::unpack_restart(int nlocal, int nth) {
 }
 
 int FixRigidConvex::size_restart(int nlocal) {
-  // length, body, quaternion (4), angular momentum (3), node count, histories
-  return 1 + 9 + freestand::kContactHistorySize * static_cast<int>(state_[nlocal].table_history.size());
+  // length, body, quaternion (4), angular momentum (3), node count, histories,
+  // pair count, per pair: partner, entry count, per entry: key and history
+  const BodyState &s = state_[nlocal];
+  int size = 1 + 9 + freestand::kContactHistorySize * static_cast<int>(s.table_history.size()) + 1;
+  for (const PairHistory &pair : s.pairs)
+    size += 2 + (1 + freestand::kContactHistorySize) * static_cast<int>(pair.entries.size());
+  return size;
 }
 
 int FixRigidConvex::maxsize_restart() {

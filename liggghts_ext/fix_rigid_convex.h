@@ -11,8 +11,10 @@ FixStyle(rigid/convex,FixRigidConvex)
 #ifndef LMP_FIX_RIGID_CONVEX_H
 #define LMP_FIX_RIGID_CONVEX_H
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fix.h"
@@ -20,6 +22,8 @@ FixStyle(rigid/convex,FixRigidConvex)
 #include "freestand/rigid_body.h"
 #include "freestand/scene.h"
 #include "rigid_body_source.h"
+
+namespace freestand { class BodyContactModel; }
 
 namespace LAMMPS_NS {
 
@@ -33,6 +37,10 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   int setmask() override;
   void init() override;
   void setup(int vflag) override;
+  void setup_pre_force(int vflag) override;
+  void pre_force(int vflag) override;
+  int pack_comm(int n, int *list, double *buf, int pbc_flag, int *pbc) override;
+  void unpack_comm(int n, int first, double *buf) override;
   void initial_integrate(int vflag) override;
   void post_force(int vflag) override;
   void final_integrate() override;
@@ -55,6 +63,25 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   void gather_poses(std::vector<freestand::BodyPose> &poses, std::vector<char> &present) override;
   std::vector<freestand::ChannelBody> describe_bodies() override;
 
+ public:
+  // Contact histories of one body with one partner body (pair convex),
+  // keyed by NodeContact::key and sorted by it. Both bodies keep a copy,
+  // updated identically, so the pair's ranks agree after migration.
+  struct PairHistory {
+    tagint partner;                                                   // tag of the other body
+    std::vector<std::pair<std::uint64_t, freestand::ContactHistory>> entries;  // by key
+  };
+  // For pair convex: body index of atom i (local or ghost; -1: not a body).
+  int body_of(int i) const { return state_[i].body; }
+  const Eigen::Quaterniond &orientation_of(int i) const { return state_[i].orientation; }
+  const freestand::BodyContactModel &contact_model(int body) const { return *templates_[body].contact_model; }
+  double mass_of(int body) const { return templates_[body].mass.mass(); }
+  double largest_radius() const;
+  // The law between two bodies: their interface, or the fix's defaults.
+  const freestand::ContactLaw &law_between(int body_a, int body_b) const;
+  // Histories of local atom i with `partner`, created empty when new.
+  PairHistory &pair_history(int i, tagint partner);
+
  private:
   // Everything about one body of the scene that does not change (cold data).
   struct BodyTemplate {
@@ -65,6 +92,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
     std::vector<double> node_mass;                 // effective mass of each node's dashpot (kg)
     const freestand::ContactLaw *table_law;        // contact with the table, or null
     double bounding_radius;                        // atom radius: farthest point from the COM (m)
+    std::shared_ptr<freestand::BodyContactModel> contact_model;  // all faces' nodes, for pair convex
   };
   // Per local atom: the body it is and its rotational state (hot data).
   struct BodyState {
@@ -72,6 +100,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
     Eigen::Quaterniond orientation;                      // body frame -> world
     Eigen::Vector3d angular_momentum;                    // world (kg m^2/s)
     std::vector<freestand::ContactHistory> table_history;  // per contact node
+    std::vector<PairHistory> pairs;                      // with bodies in contact (pair convex)
   };
 
   void parse(int narg, char **arg, std::string &scene_file, freestand::SceneDefaults &defaults);
@@ -82,6 +111,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
 
   freestand::Scene scene_;                          // as read, with defaults applied
   std::vector<std::unique_ptr<freestand::ContactLaw>> laws_;  // one per scene interface
+  std::unique_ptr<freestand::ContactLaw> default_law_;        // bodies without an interface
   std::vector<BodyTemplate> templates_;             // one per scene body
   std::vector<BodyState> state_;                    // per local atom (size nmax)
   std::string table_id_;                            // fix shaketable moving the plane, or empty

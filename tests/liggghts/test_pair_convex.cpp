@@ -1,0 +1,85 @@
+// pair_style convex: a tower rocking on a pedestal that cannot move (10^7 kg,
+// stiff support) must rock as the same tower on the table (issue 3: within 1 %).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "validation_support.h"
+
+namespace fs = std::filesystem;
+namespace fv = freestand::validation;
+using nlohmann::json;
+
+namespace {
+
+// The seed paper's tower: R = 1.55 m, alpha = 13.5 deg, marble; released
+// from rest tilted by alpha/2 about its +x base edge, whose base is at z0.
+json tower(double z0) {
+  const double b = 1.55 * std::sin(13.5 * M_PI / 180), h = 1.55 * std::cos(13.5 * M_PI / 180);
+  const double theta = 0.5 * std::atan(b / h);
+  return {{"name", "tower"}, {"shape", "box"}, {"half_extents", {b, b, h}}, {"density", 2700},
+          {"position", {b - b * std::cos(theta), 0.0, z0 + b * std::sin(theta)}},
+          {"orientation", {std::cos(theta / 2), 0.0, std::sin(theta / 2), 0.0}},
+          {"nodes", {{"layout", "vertices"}}}};
+}
+
+// Runs a scene; returns (time, rock_x of body `index`) every 1e-3 s for 5 s.
+std::vector<std::vector<double>> rock(const std::string& name, const json& scene, int index) {
+  const fs::path dir = fv::fresh_dir(name);
+  std::ofstream(dir / "scene.json") << scene.dump(1);
+  std::ofstream script(dir / "run.in");
+  script << "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\nnewton off\n"
+            "communicate single vel yes\nunits si\nregion domain block -4 4 -4 4 -1 6 units box\n"
+            "create_box 1 domain\nneighbor 0.05 bin\nneigh_modify delay 0 binsize 1.0\n"
+            "timestep 2e-6\n"
+         << "fix bodies all rigid/convex scene " << (dir / "scene.json").string()
+         << " tangential_damping normal\n"
+         // Corner nodes against a face are seen by one of the two passes only:
+         // full weight, so a corner is as stiff on the pedestal as on the table.
+         << "pair_style convex pass_weight 1\npair_coeff * *\n"
+            "fix grav all gravity 9.81 vector 0 0 -1\ncompute rs all rockslide bodies\n"
+            "variable t equal time\nvariable r equal c_rs["
+         << index << "][1]\nfix out all print 500 \"${t} ${r}\" file " << (dir / "out.txt").string()
+         << " screen no\nrun 2500000\n";
+  script.close();
+  fv::run_input((dir / "run.in").string(), {});
+  return fv::read_rows(dir / "out.txt", 2);
+}
+
+}  // namespace
+
+TEST(PairConvex, TowerOnHeavyPedestalRocksAsOnTheTable) {
+  const json interface_table = {{"lower", "table"}, {"upper", "tower"}, {"mu", 0.6}, {"restitution", 0.01}};
+  const auto on_table = rock("pair_convex_table", {{"bodies", {tower(0.0)}}, {"interfaces", {interface_table}}}, 1);
+
+  const double bp = 0.91 * std::sin(33 * M_PI / 180), hp = 0.91 * std::cos(33 * M_PI / 180);
+  json pedestal = {{"name", "pedestal"}, {"shape", "box"}, {"half_extents", {bp, bp, hp}},
+                   {"mass", 1e7}, {"nodes", {{"layout", "vertices"}}}};
+  json upper = tower(2 * hp);
+  upper["supported_by"] = "pedestal";
+  const json scene = {
+      {"bodies", {pedestal, upper}},
+      // A stiff support: the pedestal sinks 1e-6 m under its own weight.
+      {"interfaces", {{{"lower", "table"}, {"upper", "pedestal"}, {"mu", 0.6}, {"restitution", 0.01},
+                       {"contact_stiffness", 1e14}},
+                      {{"lower", "pedestal"}, {"upper", "tower"}, {"mu", 0.6}, {"restitution", 0.01}}}}};
+  const auto on_pedestal = rock("pair_convex_pedestal", scene, 2);
+
+  ASSERT_EQ(on_table.size(), on_pedestal.size());
+  double peak = 0, worst = 0;
+  for (std::size_t k = 0; k < on_table.size(); ++k) {
+    peak = std::max(peak, std::fabs(on_table[k][1]));
+    worst = std::max(worst, std::fabs(on_table[k][1] - on_pedestal[k][1]));
+  }
+  std::cout << "[validation] tower on a 1e7 kg pedestal vs on the table, 5 s of free rocking: "
+            << "largest rock_x difference " << worst << " rad = " << 100 * worst / peak
+            << " % of the peak " << peak << " rad\n";
+  // Issue 3: within 1 %. The remaining difference is the pedestal's own
+  // compliance (it sinks and tilts by ~1e-6) and round-off.
+  EXPECT_LT(worst, 0.01 * peak);
+  EXPECT_GT(peak, 0.1);  // it rocked
+}
