@@ -277,9 +277,16 @@ void FixRigidConvex::setup(int vflag) { post_force(vflag); }
 
 // Ghost bodies need their body index and orientation before pair convex
 // computes contacts; positions and velocities come with LIGGGHTS' own comm.
-void FixRigidConvex::setup_pre_force(int) { comm->forward_comm_fix(this); }
+// Only pair convex needs ghost orientations. Known problem: this forward
+// communication aborts with MPI_ERR_TRUNCATE under mpirun (issue 3 note),
+// so runs without pair convex do not use it.
+void FixRigidConvex::setup_pre_force(int) {
+  if (force->pair_match("convex", 1)) comm->forward_comm_fix(this);
+}
 
-void FixRigidConvex::pre_force(int) { comm->forward_comm_fix(this); }
+void FixRigidConvex::pre_force(int) {
+  if (force->pair_match("convex", 1)) comm->forward_comm_fix(this);
+}
 
 int FixRigidConvex::pack_comm(int n, int *list, double *buf, int, int *) {
   int m = 0;
