@@ -277,9 +277,7 @@ void FixRigidConvex::setup(int vflag) { post_force(vflag); }
 
 // Ghost bodies need their body index and orientation before pair convex
 // computes contacts; positions and velocities come with LIGGGHTS' own comm.
-// Only pair convex needs ghost orientations. Known problem: this forward
-// communication aborts with MPI_ERR_TRUNCATE under mpirun (issue 3 note),
-// so runs without pair convex do not use it.
+// Only pair convex needs ghost orientations.
 void FixRigidConvex::setup_pre_force(int) {
   if (force->pair_match("convex", 1)) comm->forward_comm_fix(this);
 }
@@ -298,7 +296,9 @@ int FixRigidConvex::pack_comm(int n, int *list, double *buf, int, int *) {
     buf[m++] = s.orientation.y();
     buf[m++] = s.orientation.z();
   }
-  return m;
+  // LIGGGHTS 3.8 (like LAMMPS of its time) expects the number of values per
+  // atom here and multiplies it by the atom counts of both sides itself.
+  return comm_forward;
 }
 
 void FixRigidConvex::unpack_comm(int n, int first, double *buf) {
