@@ -40,10 +40,10 @@ void note(LAMMPS *lmp, const std::string &text) {
 }
 
 // `tangential_damping VALUE|normal`, read ahead of parse(): the damping ratio
-// zeta_t of every interface's tangential dashpot, or "normal" for zeta_t =
-// the interface's own normal zeta. Returns -1 when absent, -2 for "normal".
+// zeta_t of every interface's tangential dashpot, or "normal" (the default)
+// for zeta_t = the interface's own normal zeta. Returns -2 for "normal".
 double tangential_damping_keyword(int narg, char **arg, Error *error) {
-  double value = -1.0;
+  double value = -2.0;
   for (int i = 3; i + 1 < narg; i += 2) {
     if (std::strcmp(arg[i], "tangential_damping") != 0) continue;
     if (std::strcmp(arg[i + 1], "normal") == 0) {
@@ -83,11 +83,12 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
     // zeta_t = zeta the tangential force of an impact rises and decays with the
     // normal one instead of lagging behind it through the undamped spring.
     const double tangential_damping = tangential_damping_keyword(narg, arg, error);
-    if (tangential_damping != -1.0)
-      for (auto &interface : scene_.interfaces)
-        interface.contact.tangential_damping_ratio =
-            tangential_damping >= 0.0 ? tangential_damping
-                                      : freestand::ContactLaw(interface.contact).damping_ratio();
+    auto tangential_ratio = [&](const freestand::ContactParams &contact) {
+      return tangential_damping >= 0.0 ? tangential_damping
+                                       : freestand::ContactLaw(contact).damping_ratio();
+    };
+    for (auto &interface : scene_.interfaces)
+      interface.contact.tangential_damping_ratio = tangential_ratio(interface.contact);
     for (const auto &interface : scene_.interfaces)
       laws_.push_back(std::make_unique<freestand::ContactLaw>(interface.contact));
     // Bodies that touch without a stated interface (neighbours in a wall,
@@ -96,9 +97,7 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
     fallback.stiffness_per_area = defaults.stiffness_per_area;
     fallback.restitution = defaults.restitution;
     fallback.mu_s = fallback.mu_k = defaults.mu;
-    if (tangential_damping != -1.0)
-      fallback.tangential_damping_ratio =
-          tangential_damping >= 0.0 ? tangential_damping : freestand::ContactLaw(fallback).damping_ratio();
+    fallback.tangential_damping_ratio = tangential_ratio(fallback);
     default_law_ = std::make_unique<freestand::ContactLaw>(fallback);
     build_templates();
   } catch (const freestand::InputError &e) {

@@ -77,26 +77,33 @@ TEST(RigidConvex, RestingBlockSettlesToTheLinearLawsOverlap) {
 TEST(RigidConvex, SlidingOnSineTableMatchesNewmark) {
   // Squat 0.5 x 0.5 x 0.4 m block (b/h = 1.25 >> mu: it cannot rock), mu = 0.2,
   // table a = 0.4 g sin(2 pi 2 t) for 2 s. Reference: rigid-plastic Newmark
-  // integration. Tolerance 2 % of the peak slide (issue 2's figure for the
-  // stock clump), covering the elastic tangential spring (~1e-5 m) and the
-  // contact's compliance during stick-slip transitions.
+  // integration. Tolerance 1 % of the peak slide (issue 3). What separates
+  // the two is the contact's compliance (the elastic tangential spring before
+  // each slip, the normal spring): it must shrink as the contact stiffens,
+  // like 1/sqrt(k) for the spring's stick-slip lag.
   const double g = 9.81, A = 0.4 * 9.80665, f = 2.0;
-  const auto rows = run_block("rigid_convex_slide",
-      R"({"bodies": [{"name": "b", "shape": "box", "half_extents": [0.25, 0.25, 0.2], "mass": 200,
-          "nodes": {"per_edge": 2}}],
-          "interfaces": [{"lower": "table", "upper": "b", "mu": 0.2}]})",
-      "stiffness 1e10 restitution 0.1",
-      "fix shake all shaketable x sine amplitude 0.4 g frequency 2 duration 2", 2e-5, 3.0, 50);
   auto ag = [&](double t) { return t < 2.0 ? A * std::sin(2 * M_PI * f * t) : 0.0; };
   const auto ref = freestand::reference::newmark_sliding(ag, 0.2, 0.2, g, 3.0, 1e-3, 1e-6);
-  double peak = 0, worst = 0;
+  double peak = 0;
   for (double u : ref.u) peak = std::max(peak, std::fabs(u));
-  for (const auto& row : rows)
-    worst = std::max(worst, std::fabs(row[2] - fv::interpolate(ref.t, ref.u, row[0])));
-  std::cout << "[validation] convex sliding: peak " << peak << " m, largest error " << worst
-            << " m (" << 100 * worst / peak << " % of the peak)\n";
+  std::vector<double> errors;
+  for (const char* stiffness : {"1e10", "1e11"}) {
+    const auto rows = run_block(std::string("rigid_convex_slide_") + stiffness,
+        R"({"bodies": [{"name": "b", "shape": "box", "half_extents": [0.25, 0.25, 0.2], "mass": 200,
+            "nodes": {"per_edge": 2}}],
+            "interfaces": [{"lower": "table", "upper": "b", "mu": 0.2}]})",
+        std::string("stiffness ") + stiffness + " restitution 0.1",
+        "fix shake all shaketable x sine amplitude 0.4 g frequency 2 duration 2", 2e-5, 3.0, 50);
+    double worst = 0;
+    for (const auto& row : rows)
+      worst = std::max(worst, std::fabs(row[2] - fv::interpolate(ref.t, ref.u, row[0])));
+    std::cout << "[validation] convex sliding, k_a " << stiffness << " N/m^3: peak " << peak
+              << " m, largest error " << worst << " m (" << 100 * worst / peak << " % of the peak)\n";
+    EXPECT_LT(worst, 0.01 * peak);
+    errors.push_back(worst);
+  }
   EXPECT_GT(peak, 0.01);
-  EXPECT_LT(worst, 0.02 * peak);
+  EXPECT_LT(errors[1], 0.5 * errors[0]);  // converges toward Newmark as the contact stiffens
 }
 
 TEST(RigidConvex, RestartContinuesIdentically) {
