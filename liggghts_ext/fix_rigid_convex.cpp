@@ -142,6 +142,11 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
     else if (key == "stiffness") defaults.stiffness_per_area = freestand::parse_number(error, "fix rigid/convex", "stiffness", value);
     else if (key == "restitution") defaults.restitution = freestand::parse_number(error, "fix rigid/convex", "restitution", value);
     else if (key == "mu") defaults.mu = freestand::parse_number(error, "fix rigid/convex", "mu", value);
+    else if (key == "law") {
+      defaults.law = value;
+      if (defaults.law != "linear" && defaults.law != "hertz")
+        error->all(FLERR, "fix rigid/convex: law must be linear or hertz");
+    }
     else if (key == "tangential_damping") continue;  // tangential_damping_keyword()
     else if (key == "spacing") defaults.nodes.spacing = freestand::parse_number(error, "fix rigid/convex", "spacing", value);
     else if (key == "layout") {
@@ -250,23 +255,29 @@ void FixRigidConvex::init() {
 // and the accuracy fraction of it (docs/contact-law.md).
 void FixRigidConvex::check_time_step() {
   double limit = 1e300, recommended = 1e300;
-  for (const BodyTemplate &t : templates_) {
-    if (!t.table_law || t.node_offset.empty()) continue;
-    freestand::ContactBody body{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
-    std::vector<Vector3d> points(t.node_offset);
-    const double overlap = 0.0;
-    const freestand::ContactModes modes = freestand::resting_critical_time_step(
-        *t.table_law, points, t.node_area, Vector3d::UnitZ(), overlap, body);
-    limit = std::min(limit, modes.time_step);
-    recommended = std::min(recommended, modes.time_step * freestand::recommended_time_step_fraction(*t.table_law));
-  }
-  if (limit == 1e300) return;
-  char text[256];
-  snprintf(text, sizeof(text), "critical time step %.3g s; accurate restitution needs %.3g s or less; "
-           "timestep is %.3g s", limit, recommended, update->dt);
-  note(lmp, text);
+  const freestand::ContactLaw *law = nullptr;
   try {
-    freestand::check_time_step(*templates_.front().table_law, update->dt, limit, "fix rigid/convex");
+    for (const BodyTemplate &t : templates_) {
+      if (!t.table_law || t.node_offset.empty()) continue;
+      freestand::ContactBody body{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
+      // Linearised at the overlap of the body resting under its own weight
+      // (Hertz stiffens with overlap; the linear law does not care).
+      double area = 0.0;
+      for (double a : t.node_area) area += a;
+      const double overlap = t.table_law->overlap_under_load(area, t.mass.mass() * scene_.gravity);
+      const freestand::ContactModes modes = freestand::resting_critical_time_step(
+          *t.table_law, t.node_offset, t.node_area, Vector3d::UnitZ(), overlap, body);
+      if (modes.time_step < limit) law = t.table_law;
+      limit = std::min(limit, modes.time_step);
+      recommended = std::min(recommended,
+                             modes.time_step * freestand::recommended_time_step_fraction(*t.table_law));
+    }
+    if (!law) return;
+    char text[256];
+    snprintf(text, sizeof(text), "critical time step %.3g s; accurate restitution needs %.3g s or "
+             "less; timestep is %.3g s", limit, recommended, update->dt);
+    note(lmp, text);
+    freestand::check_time_step(*law, update->dt, limit, "fix rigid/convex");
   } catch (const freestand::InputError &e) {
     error->all(FLERR, e.what());
   }

@@ -214,6 +214,19 @@ void fill_stiffness(Scene& scene, InterfaceSpec& spec, const json* stated,
                                      defaults.stiffness_per_area,
                                      defaults.stiffness_per_area * base_area));
   }
+  // Normal law: linear, or Hertz with the reference overlap at which its
+  // pressure equals the linear law's; by default the upper body's resting
+  // overlap under its own weight, so both laws rest at the same overlap.
+  const std::string law = stated ? stated->value("law", defaults.law) : defaults.law;
+  if (law == "hertz") {
+    spec.contact.law = NormalLaw::kHertz;
+    spec.contact.hertz_reference_overlap =
+        stated && stated->contains("hertz_reference_overlap")
+            ? positive(*stated, "hertz_reference_overlap", where)
+            : upper->mass * scene.gravity / (spec.contact.stiffness_per_area * base_area);
+  } else if (law != "linear") {
+    fail(where, fmt::format("unknown law '{}' (linear, hertz)", law));
+  }
 }
 
 }  // namespace

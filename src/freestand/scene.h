@@ -56,6 +56,7 @@ struct SceneDefaults {
   double stiffness_per_area = 1e10;        // N/m^3 (stone on stone: E ~ 5e10 Pa over ~5 m)
   double restitution = 0.1;                // flat face-on impact
   double mu = 0.6;                         // friction when none is stated
+  std::string law = "linear";              // normal law when none is stated: "linear" or "hertz"
   NodeOptions nodes;                       // contact nodes when a body states none
 };
 

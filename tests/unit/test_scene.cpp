@@ -81,3 +81,16 @@ TEST(Scene, BadInputIsNamed) {
   doc["interfaces"][0]["mu_k"] = 0.5;
   expect_error(doc, "mu");
 }
+
+TEST(Scene, HertzInterfaceRestsAtTheLinearOverlapByDefault) {
+  json doc = tower_on_pedestal();
+  doc["interfaces"][0]["law"] = "hertz";
+  const auto scene = freestand::parse_scene(doc, "test");
+  const auto* table = freestand::find_interface(scene, "table", "pedestal");
+  ASSERT_NE(table, nullptr);
+  EXPECT_EQ(table->contact.law, freestand::NormalLaw::kHertz);
+  // delta_ref = m g / (k_a A): the pedestal's resting overlap under the linear law.
+  EXPECT_NEAR(table->contact.hertz_reference_overlap, 1180.0 * 9.81 / 3.6e8, 1e-15);
+  doc["interfaces"][0]["law"] = "plastic";
+  EXPECT_THROW(freestand::parse_scene(doc, "test"), freestand::InputError);
+}
