@@ -160,6 +160,9 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
     }
   }
   if (scene_file.empty()) error->all(FLERR, "fix rigid/convex: 'scene FILE' is required");
+  for (int i = 3; i < narg; i += 2)
+    if (!std::strcmp(arg[i], "plane") && !table_id_.empty())
+      error->all(FLERR, "fix rigid/convex: with 'table', the plane height is fix shaketable's 'plane'");
   if (atom_type_ < 1 || atom_type_ > atom->ntypes)
     error->all(FLERR, "fix rigid/convex: 'type' must be an existing atom type");
 }
@@ -247,6 +250,7 @@ void FixRigidConvex::init() {
     if (ifix >= 0) table_ = dynamic_cast<FixShakeTable *>(modify->fix[ifix]);
     if (!table_)
       error->all(FLERR, ("fix rigid/convex: '" + table_id_ + "' is not a fix shaketable").c_str());
+    plane_z_ = table_->plane_height();  // one place states where the table is
   }
   check_time_step();
 }
