@@ -144,6 +144,13 @@ double ContactLaw::elastic_force(double area, double overlap) const {
   return k_h_ * area * overlap * std::sqrt(overlap);
 }
 
+double ContactLaw::elastic_energy(double area, double overlap) const {
+  if (!(overlap > 0.0)) return 0.0;
+  if (params_.law == NormalLaw::kLinear)
+    return 0.5 * params_.stiffness_per_area * area * overlap * overlap;
+  return 0.4 * k_h_ * area * overlap * overlap * std::sqrt(overlap);
+}
+
 ContactLinearization ContactLaw::linearize(double area, double effective_mass,
                                            double overlap) const {
   ContactLinearization out;
@@ -206,6 +213,7 @@ ContactForce ContactLaw::compute(const ContactPoint& point, double dt,
   // this step's tangential displacement, and return-map onto the cone.
   const double kt = params_.tangential_stiffness_ratio * kn;
   const double ct = c_tang_ * std::sqrt(kt * m);
+  const double old_xi2 = history.displacement().squaredNorm();  // rotation keeps |xi|
   Eigen::Vector3d xi = rotate_into_tangent_plane(history.displacement(), n) + vt * dt;
   const Eigen::Vector3d trial = -kt * xi - ct * vt;
   const double trial2 = trial.squaredNorm();
@@ -224,6 +232,21 @@ ContactForce ContactLaw::compute(const ContactPoint& point, double dt,
     xi = kt > 0.0 ? Eigen::Vector3d(-ft / kt) : Eigen::Vector3d::Zero();
     sliding = true;
   }
+
+  // Energy ledger (docs/fix_rigid_convex.md, "Energy ledger"): the dashpot
+  // part of the applied normal force, F_n - F_el (with the clamp: -F_el),
+  // works against the normal velocity the law used; stuck, the tangential
+  // dashpot dissipates c_t |v_t|^2 dt; sliding, the contact takes the
+  // frictional work -F_t . v_t dt and gives back what its spring loses in the
+  // return map, E_t,old - E_t,new.
+  out.normal_energy = params_.law == NormalLaw::kLinear ? 0.5 * elastic * delta : 0.4 * elastic * delta;
+  out.normal_dissipation = -(fn - elastic) * vn * dt;
+  const double new_xi2 = xi.squaredNorm();
+  out.tangential_energy = 0.5 * kt * new_xi2;
+  if (sliding)
+    out.friction_dissipation = -ft.dot(vt) * dt + 0.5 * kt * (old_xi2 - new_xi2);
+  else
+    out.friction_dissipation = ct * vt.squaredNorm() * dt;
 
   history.xi[0] = xi.x();
   history.xi[1] = xi.y();

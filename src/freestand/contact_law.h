@@ -106,6 +106,16 @@ struct ContactForce {
   Eigen::Vector3d tangential = Eigen::Vector3d::Zero();  // friction part of it (N), world
   double normal = 0.0;                                   // F_n >= 0 (N): force = F_n n + tangential
   bool sliding = false;                                  // state after this step
+  // Energy ledger of this step (docs/fix_rigid_convex.md, "Energy ledger").
+  // Cheap (a few flops); callers that do not keep a ledger ignore them.
+  double normal_energy = 0.0;      // elastic energy of the normal spring after the step (J):
+                                   // linear k_a A delta^2 / 2, Hertz (2/5) k_h A delta^{5/2}
+  double tangential_energy = 0.0;  // elastic energy of the tangential spring after it (J): k_t |xi|^2 / 2
+  double normal_dissipation = 0.0;    // by the normal dashpot in this step (J), >= 0:
+                                      // -(F_n - F_el) v_n dt (the clamp included)
+  double friction_dissipation = 0.0;  // by friction and the tangential dashpot in this step (J):
+                                      // stick c_t |v_t|^2 dt; slip -F_t . v_t dt + (E_t,old - E_t,new)
+  double elastic_energy() const { return normal_energy + tangential_energy; }
 };
 
 // Coefficient of restitution of a single-dof impact of the law with damping
@@ -151,6 +161,9 @@ class ContactLaw {
 
   // Elastic normal force of a node of area A at overlap delta (N).
   double elastic_force(double area, double overlap) const;
+  // Elastic energy of the normal spring of a node of area A at overlap delta
+  // (J): linear k_a A delta^2 / 2, Hertz (2/5) k_h A delta^{5/2}; 0 for delta <= 0.
+  double elastic_energy(double area, double overlap) const;
   ContactLinearization linearize(double area, double effective_mass, double overlap) const;
 
   // Overlap of a face of area A_face pressed by a steady load W (N): the
