@@ -18,8 +18,13 @@ using nlohmann::json;
   throw InputError(fmt::format("{}: {}", where, what));
 }
 
+const json& field(const json& j, const std::string& key, const std::string& where) {
+  if (!j.contains(key)) fail(where, fmt::format("'{}' is missing", key));
+  return j.at(key);
+}
+
 double number(const json& j, const std::string& key, const std::string& where) {
-  const json& v = j.at(key);
+  const json& v = field(j, key, where);
   if (!v.is_number() || !std::isfinite(v.get<double>()))
     fail(where, fmt::format("'{}' must be a finite number", key));
   return v.get<double>();
@@ -32,7 +37,7 @@ double positive(const json& j, const std::string& key, const std::string& where)
 }
 
 Eigen::Vector3d vector3(const json& j, const std::string& key, const std::string& where) {
-  const json& v = j.at(key);
+  const json& v = field(j, key, where);
   if (!v.is_array() || v.size() != 3) fail(where, fmt::format("'{}' must be [x, y, z]", key));
   Eigen::Vector3d out;
   for (int i = 0; i < 3; ++i) {
@@ -62,24 +67,82 @@ Eigen::Matrix3d matrix3(const json& j, const std::string& key, const std::string
   return out;
 }
 
-Clump parse_shape(const json& body, const std::string& where) {
-  const std::string shape = body.at("shape").get<std::string>();
-  if (shape == "box") return Clump(ConvexShape::box(vector3(body, "half_extents", where)));
+// One convex shape: box, prism or convex (hull of vertices).
+ConvexShape parse_convex(const json& j, const std::string& shape, const std::string& where) {
+  if (shape == "box") {
+    const Eigen::Vector3d h = vector3(j, "half_extents", where);
+    if ((h.array() <= 0).any()) fail(where, "'half_extents' must be > 0");
+    return ConvexShape::box(h);
+  }
   if (shape == "prism") {
-    const double sides = number(body, "sides", where);
+    const double sides = number(j, "sides", where);
     if (sides != std::floor(sides)) fail(where, "'sides' must be an integer");
-    return Clump(ConvexShape::prism(positive(body, "radius", where), static_cast<int>(sides),
-                                    positive(body, "height", where)));
+    if (sides < 3) fail(where, fmt::format("'sides' must be >= 3, got {}", sides));
+    return ConvexShape::prism(positive(j, "radius", where), static_cast<int>(sides),
+                              positive(j, "height", where));
   }
   if (shape == "convex") {
+    const json& vertices = field(j, "vertices", where);
+    if (!vertices.is_array()) fail(where, "'vertices' must be a list of [x, y, z]");
     std::vector<Eigen::Vector3d> points;
-    for (const json& p : body.at("vertices")) {
-      if (!p.is_array() || p.size() != 3) fail(where, "'vertices' must be a list of [x, y, z]");
+    for (const json& p : vertices) {
+      if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() ||
+          !p[2].is_number())
+        fail(where, "'vertices' must be a list of [x, y, z]");
       points.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
     }
-    return Clump(ConvexShape::hull(points, where));
+    return ConvexShape::hull(points, where);
   }
-  fail(where, fmt::format("unknown shape '{}' (box, prism, convex)", shape));
+  fail(where, fmt::format("unknown shape '{}' (box, prism, convex{})", shape,
+                          where.find(": piece ") == std::string::npos ? ", clump" : ""));
+}
+
+std::string shape_name(const json& j, const std::string& where) {
+  if (!j.contains("shape")) fail(where, "'shape' is missing");
+  if (!j.at("shape").is_string()) fail(where, "'shape' must be a string");
+  return j.at("shape").get<std::string>();
+}
+
+// A unit quaternion [w, x, y, z] (normalised when within 1e-6 of unit length).
+Eigen::Quaterniond quaternion(const json& j, const std::string& key, const std::string& where) {
+  const json& q = j.at(key);
+  if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() ||
+      !q[2].is_number() || !q[3].is_number())
+    fail(where, fmt::format("'{}' must be a quaternion [w, x, y, z]", key));
+  Eigen::Quaterniond out(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
+                         q[3].get<double>());
+  if (!out.coeffs().allFinite() || std::fabs(out.norm() - 1.0) > 1e-6)
+    fail(where, fmt::format("'{}' must be a unit quaternion", key));
+  return out.normalized();
+}
+
+// A body's geometry: one convex shape, or a clump of pieces placed in the
+// body frame by "offset" and "orientation" (piece frame -> body frame).
+Clump parse_shape(const json& body, const std::string& where) {
+  const std::string shape = shape_name(body, where);
+  if (shape != "clump") return Clump(parse_convex(body, shape, where));
+  if (!body.contains("pieces")) fail(where, "clump: 'pieces' is missing");
+  const json& pieces = body.at("pieces");
+  if (!pieces.is_array() || pieces.empty())
+    fail(where, "clump: 'pieces' must be a non-empty list of shapes");
+  std::vector<ClumpPiece> list;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const json& p = pieces[i];
+    std::string piece_where = fmt::format("{}: piece {}", where, i);
+    if (!p.is_object()) fail(piece_where, "must be an object with 'shape'");
+    const std::string piece_shape = shape_name(p, piece_where);
+    piece_where += fmt::format(" ({})", piece_shape);
+    if (piece_shape == "clump") fail(piece_where, "a clump piece cannot itself be a clump");
+    for (const char* key : {"mass", "density", "com", "inertia", "position", "velocity", "omega",
+                            "nodes", "supported_by", "name"})
+      if (p.contains(key))
+        fail(piece_where, fmt::format("'{}' belongs to the body, not to a piece", key));
+    ClumpPiece piece{parse_convex(p, piece_shape, piece_where)};
+    if (p.contains("offset")) piece.offset = vector3(p, "offset", piece_where);
+    if (p.contains("orientation")) piece.orientation = quaternion(p, "orientation", piece_where);
+    list.push_back(piece);
+  }
+  return Clump(list, where + ": clump");
 }
 
 NodeOptions parse_nodes(const json& body, const NodeOptions& fallback, const std::string& where) {
@@ -135,13 +198,7 @@ BodySpec parse_body(const json& j, const SceneDefaults& defaults, const std::str
   body.omega = vector3_or(j, "omega", where, Eigen::Vector3d::Zero());
   body.orientation = Eigen::Quaterniond::Identity();
   if (j.contains("orientation")) {
-    const json& q = j.at("orientation");
-    if (!q.is_array() || q.size() != 4) fail(where, "'orientation' must be a quaternion [w, x, y, z]");
-    body.orientation = Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(),
-                                          q[2].get<double>(), q[3].get<double>());
-    if (std::fabs(body.orientation.norm() - 1.0) > 1e-6)
-      fail(where, "'orientation' must be a unit quaternion");
-    body.orientation.normalize();
+    body.orientation = quaternion(j, "orientation", where);
   }
   body.position = vector3_or(j, "position", where, Eigen::Vector3d::Constant(NAN));
   body.nodes = parse_nodes(j, defaults.nodes, where);
