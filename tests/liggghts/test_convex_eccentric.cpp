@@ -173,11 +173,12 @@ TEST(ConvexEccentric, BodyEccentricInXAndYTwistsUnderXShakingSymmetricOneDoesNot
   // symmetric about it, shaken along x, gets mirror-symmetric contact
   // forces, so its torque about z, and its twist, rock_y and slide_y, are
   // zero up to round-off. Round-off bound: the mirror nodes' coordinates
-  // differ by ~1e-16 m (the COM's y from the mass integrals), and a torque
-  // imbalance of ~1e-16 of the contact moments grows at most with the
-  // rocking's instability (Housner's p = 2.5 rad/s, e^(p t) = 2e4 over 4 s)
-  // to ~1e-12 rad; 1e-9 rad leaves room and is six orders below the twist
-  // asked of the eccentric body (> 1e-3 rad).
+  // differ by ~1e-16 m (the COM's y from the mass integrals), a relative
+  // torque imbalance of ~1e-16; at most it grows like the rocking's
+  // instability, e^(p t) with p = sqrt(m g R / I_O) = 3.6 rad/s for this
+  // clump (m 510 kg, R 0.48 m from the +x edge to the COM, I_O 190 kg m^2),
+  // so by 1.5e6 over 4 s: 1.5e-10 rad. 1e-9 rad is above that and six
+  // orders below the twist asked of the eccentric body (> 1e-3 rad).
   const std::string motion = "x sine amplitude 0.8 g frequency 2 duration 3";
   const auto eccentric = run_body("eccentric_twist_xy", statue(0.12, 0.12), motion, 2e-5, 4.0, 25);
   const auto symmetric = run_body("eccentric_twist_x", statue(0.12, 0.0), motion, 2e-5, 4.0, 25);
