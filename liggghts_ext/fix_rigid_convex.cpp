@@ -18,12 +18,15 @@
 #include "domain.h"
 #include "error.h"
 #include "style_args.h"
+#include "fix_gravity.h"
 #include "fix_shaketable.h"
 #include "force.h"
 #include "freestand/body_contact.h"
 #include "freestand/contact_time_step.h"
 #include "freestand/input_error.h"
 #include "modify.h"
+#include "pair.h"
+#include "pair_convex.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -66,7 +69,7 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix rigid/convex needs atom_style sphere (radius, rmass, omega, torque)");
   vector_flag = 1;
-  size_vector = 2;
+  size_vector = kLedgerSize;
   global_freq = 1;
   extvector = 1;
   time_integrate = 1;
@@ -287,7 +290,11 @@ void FixRigidConvex::check_time_step() {
   }
 }
 
-void FixRigidConvex::setup(int vflag) { post_force(vflag); }
+void FixRigidConvex::setup(int vflag) {
+  in_setup_ = true;  // the ledger counts no dissipation or work for setup's force evaluation
+  post_force(vflag);
+  in_setup_ = false;
+}
 
 // Ghost bodies need their body index and orientation before pair convex
 // computes contacts; positions and velocities come with LIGGGHTS' own comm.
@@ -370,6 +377,7 @@ void FixRigidConvex::initial_integrate(int) {
 
 void FixRigidConvex::post_force(int) {
   table_contacts_ = 0;
+  table_elastic_ = 0.0;
   for (int i = 0; i < atom->nlocal; ++i)
     if (state_[i].body >= 0 && templates_[state_[i].body].table_law) table_contact(i);
 }
@@ -408,6 +416,14 @@ void FixRigidConvex::table_contact(int i) {
     force += result.force;
     torque += r.cross(result.force);
     ++table_contacts_;
+    // Energy ledger: stored energy now; dissipation and the table's work
+    // F . v_table dt with the velocities the law used (not during setup).
+    table_elastic_ += result.elastic_energy();
+    if (!in_setup_) {
+      table_normal_dissipated_ += result.normal_dissipation;
+      table_friction_dissipated_ += result.friction_dissipation;
+      table_work_ += result.force.dot(table_velocity) * dt;
+    }
   }
   for (int k = 0; k < 3; ++k) {
     atom->f[i][k] += force[k];
@@ -435,21 +451,46 @@ void FixRigidConvex::final_integrate() {
 }
 
 double FixRigidConvex::compute_vector(int index) {
-  double local = 0.0;
-  if (index == 0) {
-    for (int i = 0; i < atom->nlocal; ++i) {
-      const BodyState &s = state_[i];
-      if (s.body < 0) continue;
-      freestand::RigidBodyState body{Vector3d(atom->x[i]), Vector3d(atom->v[i]), s.orientation,
-                                     s.angular_momentum};
-      local += freestand::kinetic_energy(body, templates_[s.body].mass);
+  double local[kLedgerSize], total[kLedgerSize];
+  ledger_local(local);
+  MPI_Allreduce(local, total, kLedgerSize, MPI_DOUBLE, MPI_SUM, world);
+  if (index == kLedgerSize - 1)
+    return total[0] + total[2] + total[3] + total[4] + total[5] - total[6];
+  return total[index];
+}
+
+// This rank's share of the global vector (its last entry is left 0).
+// Gravity: the acceleration of the first fix gravity, else the scene's
+// gravity along -z; the potential is -m g . x_com (zero at the origin).
+void FixRigidConvex::ledger_local(double out[kLedgerSize]) {
+  std::fill(out, out + kLedgerSize, 0.0);
+  Vector3d g(0.0, 0.0, -scene_.gravity);
+  for (int k = 0; k < modify->nfix; ++k)
+    if (auto *gravity = dynamic_cast<FixGravity *>(modify->fix[k])) {
+      double acceleration[3];
+      gravity->get_gravity(acceleration);
+      g = Vector3d(acceleration[0], acceleration[1], acceleration[2]);
+      break;
     }
-  } else {
-    local = table_contacts_;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const BodyState &s = state_[i];
+    if (s.body < 0) continue;
+    freestand::RigidBodyState body{Vector3d(atom->x[i]), Vector3d(atom->v[i]), s.orientation,
+                                   s.angular_momentum};
+    out[0] += freestand::kinetic_energy(body, templates_[s.body].mass);
+    out[2] -= templates_[s.body].mass.mass() * g.dot(Vector3d(atom->x[i]));
   }
-  double total = 0.0;
-  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, world);
-  return total;
+  out[1] = table_contacts_;
+  out[3] = table_elastic_;
+  out[4] = table_normal_dissipated_;
+  out[5] = table_friction_dissipated_;
+  out[6] = table_work_;
+  if (auto *pair = dynamic_cast<PairConvex *>(force->pair)) {
+    const PairConvex::EnergyLedger &ledger = pair->ledger();
+    out[3] += ledger.elastic;
+    out[4] += ledger.normal_dissipated;
+    out[5] += ledger.friction_dissipated;
+  }
 }
 
 // ---- per-atom storage that follows atoms between ranks ----------------------

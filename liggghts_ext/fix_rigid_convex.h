@@ -44,8 +44,15 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   void initial_integrate(int vflag) override;
   void post_force(int vflag) override;
   void final_integrate() override;
-  // Global vector: [1] kinetic energy (J), [2] number of node contacts with the table.
+  // Global vector: [1] kinetic energy (J), [2] number of node contacts with
+  // the table, then the energy ledger (docs/fix_rigid_convex.md, "Energy
+  // ledger"): [3] gravitational potential energy, [4] elastic energy stored in
+  // the contacts (table and pair convex), [5] cumulative normal-dashpot
+  // dissipation, [6] cumulative friction (and tangential dashpot)
+  // dissipation, [7] cumulative work of the table on the bodies, [8]
+  // [1] + [3] + [4] + [5] + [6] - [7] (constant if the ledger closes). J.
   double compute_vector(int i) override;
+  static constexpr int kLedgerSize = 8;
 
   void grow_arrays(int nmax) override;
   void copy_arrays(int i, int j, int delflag) override;
@@ -120,6 +127,16 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   int atom_type_ = 1;                               // LIGGGHTS atom type of the bodies
   tagint first_tag_ = 0;                            // tag of body 0; body k has first_tag_ + k
   int table_contacts_ = 0;                          // node contacts with the table, this rank
+
+  // Energy ledger of the table contacts on this rank (J); pair convex keeps
+  // its own. The cumulative terms do not count the force evaluation of setup
+  // and start from zero in every new fix (also after read_restart).
+  void ledger_local(double out[kLedgerSize]);
+  bool in_setup_ = false;          // post_force() called from setup()
+  double table_elastic_ = 0.0;     // elastic energy of the table contacts now
+  double table_normal_dissipated_ = 0.0;
+  double table_friction_dissipated_ = 0.0;
+  double table_work_ = 0.0;        // sum F . v_table dt
 };
 
 }  // namespace LAMMPS_NS

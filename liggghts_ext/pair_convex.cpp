@@ -79,6 +79,7 @@ double PairConvex::init_one(int, int) { return 2.0 * bodies_->largest_radius(); 
 void PairConvex::compute(int eflag, int vflag) {
   if (eflag || vflag) ev_setup(eflag, vflag);
   else evflag = vflag_fdotr = 0;
+  ledger_.elastic = 0.0;
   for (int ii = 0; ii < list->inum; ++ii) {
     const int i = list->ilist[ii];
     if (bodies_->body_of(i) < 0) continue;
@@ -118,6 +119,10 @@ void PairConvex::contact_pair(int i, int j) {
   Vector3d force_a = Vector3d::Zero(), torque_a = Vector3d::Zero();
   Vector3d force_b = Vector3d::Zero(), torque_b = Vector3d::Zero();
   updated_.clear();
+  // Ledger share: 1 when this rank owns both bodies, 1/2 when it owns one
+  // (the other rank computes the same pair).
+  const double share = 0.5 * ((a < nlocal ? 1 : 0) + (b < nlocal ? 1 : 0));
+  const bool count_dissipation = !update->setupflag;
   for (const freestand::NodeContact &c : contacts_) {
     auto found = std::lower_bound(previous.begin(), previous.end(), c.key,
                                   [](const auto &entry, std::uint64_t key) { return entry.first < key; });
@@ -127,6 +132,11 @@ void PairConvex::contact_pair(int i, int j) {
         law.compute(freestand::to_contact_point(c, reduced_mass), update->dt, history);
     freestand::apply_node_force(c, result.force, force_a, torque_a, force_b, torque_b);
     updated_.emplace_back(c.key, history);
+    ledger_.elastic += share * result.elastic_energy();
+    if (count_dissipation) {
+      ledger_.normal_dissipated += share * result.normal_dissipation;
+      ledger_.friction_dissipated += share * result.friction_dissipation;
+    }
   }
   std::sort(updated_.begin(), updated_.end(),
             [](const auto &x, const auto &y) { return x.first < y.first; });

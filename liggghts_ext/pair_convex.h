@@ -29,6 +29,17 @@ class PairConvex : public Pair {
   void init_style() override;
   double init_one(int i, int j) override;
 
+  // Energy ledger of the body-on-body contacts on this rank (J), for fix
+  // rigid/convex's global vector: a pair computed by two ranks (newton off,
+  // one body each) counts half on each. The dissipation is cumulative over
+  // the run's steps (setup's force evaluation not counted).
+  struct EnergyLedger {
+    double elastic = 0.0;              // stored in the contacts now
+    double normal_dissipated = 0.0;    // by the normal dashpots, cumulative
+    double friction_dissipated = 0.0;  // by friction and tangential dashpots, cumulative
+  };
+  const EnergyLedger &ledger() const { return ledger_; }
+
  private:
   void allocate();
   void contact_pair(int i, int j);
@@ -37,6 +48,7 @@ class PairConvex : public Pair {
   freestand::BodyContactOptions options_;             // band, pass weight
   std::vector<freestand::NodeContact> contacts_;      // reused every pair
   std::vector<std::pair<std::uint64_t, freestand::ContactHistory>> updated_;  // reused
+  EnergyLedger ledger_;
 };
 
 }  // namespace LAMMPS_NS
