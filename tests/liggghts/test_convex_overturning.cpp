@@ -234,6 +234,7 @@ TEST(ConvexOverturning, VelocityStepThresholdMatchesHousner) {
 // penalty contact can blur at a step is the transient of its tangential
 // spring (damping ratio 0.83 at restitution 0.01: overshoot ~1 % of Ft/Fn)
 // and the micrometre elastic slip and tilt, so 10 % is far outside both.
+// The last case (lambda 0.2 < beta and < mu) must stay at rest.
 // Regime read 0.1 s after the step: rocking if |theta| > 1e-3 rad, sliding
 // if the pivot corner's slip relative to the table exceeds 1 mm (the
 // slowest mode here moves 8e-3 rad and 6 mm by then; elastic motions are
@@ -248,7 +249,7 @@ TEST(ConvexOverturning, ShentonSlideRockInitiation) {
   };
   const char* names[] = {"rest", "slide", "rock", "slide-rock"};
   for (const Case c : {Case{0.5, 0.20}, Case{0.5, 0.28}, Case{0.5, 0.34}, Case{0.75, 0.33},
-                       Case{0.75, 0.40}, Case{0.75, 0.22}}) {
+                       Case{0.75, 0.40}, Case{0.75, 0.22}, Case{0.2, 0.3}}) {
     const double mu_req = ref::shenton_mu_required(c.lambda, beta);
     const ref::InitialMode expect = ref::shenton_initial_mode(b, h, c.mu, c.lambda, kG);
     std::ostringstream tag;
