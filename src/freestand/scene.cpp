@@ -190,7 +190,7 @@ BodySpec parse_body(const json& j, const SceneDefaults& defaults, const std::str
   const std::string name = j.value("name", fmt::format("body{}", index + 1));
   const std::string where = fmt::format("{}: body '{}'", source, name);
   if (name == "table") fail(where, "the name 'table' is reserved for the shake table");
-  BodySpec body{name, parse_shape(j, where)};
+  BodySpec body(name, parse_shape(j, where));
   fill_mass(j, body, defaults, where);
   body.height = body.geometry.bounding_box().max().z();
   body.supported_by = j.value("supported_by", std::string("table"));

@@ -21,6 +21,8 @@ namespace freestand {
 
 // One rigid body. Body frame: origin at the centre of the base face, z up.
 struct BodySpec {
+  BodySpec(std::string name_, Clump geometry_) : name(std::move(name_)), geometry(std::move(geometry_)) {}
+
   std::string name;                 // unique; "table" is reserved
   Clump geometry;                   // convex piece(s), body frame
   double mass = 0.0;                // kg
