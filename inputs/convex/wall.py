@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Generate the scenes of the issue-3 multi-body examples (python3 stdlib only).
 
-  python3 wall_gen.py column [--drums 8] [--sides 16] [--per-edge 2] > column.json
-  python3 wall_gen.py wall [--courses 10] [--per-course 100] > wall.json
+  python3 wall.py column [--drums 8] [--sides 16] [--per-edge 2] > column.json
+  python3 wall.py wall [--courses 10] [--per-course 100] > wall.json
 
 column: N marble drums (regular prisms, circumradius 0.45 m, height 0.6 m) stacked by a
   supported_by chain on the table, topped by a box capital (1.2 x 1.2 x 0.3 m). Face node
