@@ -184,10 +184,19 @@ void FixRigidConvex::build_templates() {
       // The dashpot of a node acts on its share of the body (contact_law.h).
       t.node_mass.push_back(spec.mass * node.area / face.area);
     }
-    t.table_law = nullptr;
-    for (std::size_t k = 0; k < scene_.interfaces.size(); ++k)
-      if (scene_.interfaces[k].lower == "table" && scene_.interfaces[k].upper == spec.name)
-        t.table_law = laws_[k].get();
+    // Every body can land on the table: with its stated interface, or the
+    // defaults (a toppled drum of a column has no stated table interface).
+    t.table_law = default_law_.get();
+    for (std::size_t k = 0; k < scene_.interfaces.size(); ++k) {
+      const auto &interface = scene_.interfaces[k];
+      if (interface.lower == "table" && interface.upper == spec.name) t.table_law = laws_[k].get();
+      for (std::size_t other = 0; other < scene_.bodies.size(); ++other) {
+        const std::string &name = scene_.bodies[other].name;
+        if ((interface.lower == spec.name && interface.upper == name) ||
+            (interface.upper == spec.name && interface.lower == name))
+          t.partner_laws.emplace_back(static_cast<int>(other), laws_[k].get());
+      }
+    }
     t.bounding_radius = spec.geometry.bounding_radius(spec.com);
     // Against other bodies every exposed face can touch.
     t.contact_model = std::make_shared<freestand::BodyContactModel>(
@@ -332,13 +341,11 @@ void FixRigidConvex::unpack_comm(int n, int first, double *buf) {
   }
 }
 
-const freestand::ContactLaw &FixRigidConvex::law_between(int lower, int upper) const {
-  const std::string &a = scene_.bodies[lower].name, &b = scene_.bodies[upper].name;
-  for (std::size_t k = 0; k < scene_.interfaces.size(); ++k) {
-    const auto &interface = scene_.interfaces[k];
-    if ((interface.lower == a && interface.upper == b) || (interface.lower == b && interface.upper == a))
-      return *laws_[k];
-  }
+// Called per contact pair and step: a scan of the few stated partners of
+// one body (resolved once in build_templates), not of the scene's names.
+const freestand::ContactLaw &FixRigidConvex::law_between(int body_a, int body_b) const {
+  for (const auto &partner : templates_[body_a].partner_laws)
+    if (partner.first == body_b) return *partner.second;
   return *default_law_;
 }
 

@@ -100,6 +100,8 @@ class FixRigidConvex : public Fix, public RigidBodySource {
     const freestand::ContactLaw *table_law;        // contact with the table, or null
     double bounding_radius;                        // atom radius: farthest point from the COM (m)
     std::shared_ptr<freestand::BodyContactModel> contact_model;  // all faces' nodes, for pair convex
+    std::vector<std::pair<int, const freestand::ContactLaw *>> partner_laws;  // stated interfaces
+                                                   // with other bodies (body index, law)
   };
   // Per local atom: the body it is and its rotational state (hot data).
   struct BodyState {
