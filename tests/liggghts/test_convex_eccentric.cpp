@@ -21,18 +21,7 @@ namespace {
 
 constexpr double kG = 9.81;
 
-const char* kSetup = R"(
-atom_style      sphere
-atom_modify     map array sort 0 0.0
-boundary        f f f
-newton          off
-communicate     single vel yes
-units           si
-region          domain block -40 40 -10 10 -1 4 units box
-create_box      1 domain
-neighbor        0.01 bin
-neigh_modify    delay 0 binsize 1.0
-)";
+const std::string kSetup = fv::convex_preamble(40, 10, -1, 4);
 
 // Columns of the rows run_body returns.
 enum Column { kTime, kTableAx, kRockX, kRockY, kTwist, kSlideX, kContacts, kColumns };

@@ -37,11 +37,7 @@ Ledger run(const std::string& name, const json& scene, const std::string& table,
   const fs::path dir = fv::fresh_dir(name);
   std::ofstream(dir / "scene.json") << scene.dump(1);
   std::ofstream script(dir / "run.in");
-  script << "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\nprocessors * 1 1\n"
-            "newton off\n"
-            "communicate single vel yes\nunits si\nregion domain block -4 4 -4 4 -1 6 units box\n"
-            "create_box 1 domain\nneighbor 0.05 bin\nneigh_modify delay 0 binsize 1.0\n"
-         << "timestep " << fv::num(dt) << "\n"
+  script << fv::convex_preamble(4, 4, -1, 6) << "timestep " << fv::num(dt) << "\n"
          << table << "\n"
          << "fix bodies all rigid/convex scene " << (dir / "scene.json").string()
          << " tangential_damping normal" << (table.empty() ? "" : " table shake") << "\n"

@@ -58,11 +58,7 @@ RunData run(const std::string& tag, const std::string& scene_json, double A, dou
   std::ofstream(dir / "scene.json") << scene_json;
   const fs::path out = dir / "out.txt";
   std::ofstream script(dir / "run.in");
-  script << "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\nnewton off\n"
-         << "communicate single vel yes\nunits si\n"
-         << "region domain block -3 3 -3 3 -3 3 units box\ncreate_box 1 domain\n"
-         << "neighbor 0.01 bin\nneigh_modify delay 0 binsize 0.5\n"
-         << "timestep " << fv::num(dt) << "\n"
+  script << fv::convex_preamble(3, 3, -3, 3) << "timestep " << fv::num(dt) << "\n"
          << "fix shake all shaketable x rectangle amplitude " << fv::num(A) << " m/s^2 width "
          << fv::num(td) << " start " << fv::num(kStart) << "\n"
          << "fix bodies all rigid/convex scene " << (dir / "scene.json").string()

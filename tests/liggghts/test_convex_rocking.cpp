@@ -53,11 +53,7 @@ Errors run(const std::string& tag, double dt, double stiffness) {
   const fs::path out = dir / "out.txt";
   const double t_end = 2.75;  // six impacts: the last one at 2.52 s
   std::ofstream script(dir / "run.in");
-  script << "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\nnewton off\n"
-         << "communicate single vel yes\nunits si\n"
-         << "region domain block -2 2 -2 2 -1 3 units box\ncreate_box 1 domain\n"
-         << "neighbor 0.01 bin\nneigh_modify delay 0 binsize 0.5\n"
-         << "timestep " << fv::num(dt) << "\n"
+  script << fv::convex_preamble(2, 2, -1, 3) << "timestep " << fv::num(dt) << "\n"
          << "fix bodies all rigid/convex scene "
          << fv::source_path("inputs/convex/free_rocking_block.json") << " plane 0 stiffness "
          << fv::num(stiffness) << " restitution 0.01 tangential_damping normal\n"

@@ -48,10 +48,7 @@ json tower_on_pedestal(double x0) {
 fs::path write_run(const fs::path& dir, const json& scene, int index, long steps) {
   std::ofstream(dir / "scene.json") << scene.dump(1);
   std::ofstream script(dir / "run.in");
-  script << "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\nprocessors * 1 1\nnewton off\n"
-            "communicate single vel yes\nunits si\nregion domain block -4 4 -4 4 -1 6 units box\n"
-            "create_box 1 domain\nneighbor 0.05 bin\nneigh_modify delay 0 binsize 1.0\n"
-            "timestep 2e-6\n"
+  script << fv::convex_preamble(4, 4, -1, 6) << "timestep 2e-6\n"
          << "fix bodies all rigid/convex scene " << (dir / "scene.json").string()
          << " tangential_damping normal\n"
          // Corner nodes against a face are seen by one of the two passes only:

@@ -20,18 +20,7 @@ namespace fv = freestand::validation;
 
 namespace {
 
-const char* kSetup = R"(
-atom_style      sphere
-atom_modify     map array sort 0 0.0
-boundary        f f f
-newton          off
-communicate     single vel yes
-units           si
-region          domain block -3 3 -3 3 -1 3 units box
-create_box      1 domain
-neighbor        0.01 bin
-neigh_modify    delay 0 binsize 0.5
-)";
+const std::string kSetup = fv::convex_preamble(3, 3, -1, 3);
 
 // Writes a scene and a script that prints time, rock_x, slide_x, uplift and
 // COM z every `every` steps; runs it; returns the rows.
@@ -136,7 +125,7 @@ TEST(RigidConvex, RestartContinuesIdentically) {
   double rock_uninterrupted, energy_uninterrupted;
   {
     freestand::testing::LiggghtsSession session;
-    session.commands(std::string(kSetup) + "timestep 2e-5\n" + body);
+    session.commands(kSetup + "timestep 2e-5\n" + body);
     session.commands("run 20000\nwrite_restart " + restart + "\nrun 20000");
     rock_uninterrupted = session.equal("c_rs[1][1]");
     energy_uninterrupted = session.equal("f_bodies[1]");

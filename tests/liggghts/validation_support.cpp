@@ -23,6 +23,14 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
+std::string convex_preamble(double half_x, double half_y, double z_lo, double z_hi) {
+  return "atom_style sphere\natom_modify map array sort 0 0.0\nboundary f f f\n"
+         "processors * 1 1\nnewton off\ncommunicate single vel yes\nunits si\n"
+         "region domain block " + num(-half_x) + " " + num(half_x) + " " + num(-half_y) + " " +
+         num(half_y) + " " + num(z_lo) + " " + num(z_hi) + " units box\ncreate_box 1 domain\n"
+         "neighbor 0.05 bin\nneigh_modify delay 0 binsize 1.0\n";
+}
+
 std::string source_path(const std::string& relative) {
   return (fs::path(FREESTAND_SOURCE_DIR) / relative).string();
 }

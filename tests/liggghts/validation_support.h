@@ -36,6 +36,12 @@ struct BlockClump {
 std::string make_clump(const std::filesystem::path& dir, const std::string& name,
                        const BlockClump& block);
 
+// Opening of an input script for freestand's convex bodies: atom_style sphere
+// with an atom map (no sorting), fixed boundaries, ranks split along x,
+// newton off (pair convex needs it), velocities communicated, SI units, one
+// atom type, the box [-half_x, half_x] x [-half_y, half_y] x [z_lo, z_hi].
+std::string convex_preamble(double half_x, double half_y, double z_lo, double z_hi);
+
 // Absolute path of a file under the source tree.
 std::string source_path(const std::string& relative);
 
