@@ -272,21 +272,43 @@ void FixRigidConvex::init() {
 void FixRigidConvex::check_time_step() {
   double limit = 1e300, recommended = 1e300;
   const freestand::ContactLaw *law = nullptr;
+  // One resting contact: the modes of body `upper` on its base nodes against
+  // the table (lower < 0) or against the body it stands on.
+  auto consider = [&](int upper, int lower, const freestand::ContactLaw &contact) {
+    const BodyTemplate &t = templates_[upper];
+    if (t.node_offset.empty()) return;
+    const freestand::ContactBody a{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
+    double area = 0.0;
+    for (double x : t.node_area) area += x;
+    // Linearised at the overlap under the body's own weight (Hertz stiffens
+    // with overlap; the linear law does not care).
+    const double overlap = contact.overlap_under_load(area, t.mass.mass() * scene_.gravity);
+    freestand::ContactModes modes;
+    if (lower < 0) {
+      modes = freestand::resting_critical_time_step(contact, t.node_offset, t.node_area,
+                                                    Vector3d::UnitZ(), overlap, a);
+    } else {
+      const freestand::BodySpec &up = scene_.bodies[upper], &down = scene_.bodies[lower];
+      const Vector3d offset = (down.position + down.orientation * down.com) -
+                              (up.position + up.orientation * up.com);
+      const freestand::ContactBody b{templates_[lower].mass.mass(), templates_[lower].mass.inertia(),
+                                     offset};
+      modes = freestand::resting_critical_time_step(contact, t.node_offset, t.node_area,
+                                                    Vector3d::UnitZ(), overlap, a, &b);
+    }
+    if (modes.time_step < limit) law = &contact;
+    limit = std::min(limit, modes.time_step);
+    recommended = std::min(recommended,
+                           modes.time_step * freestand::recommended_time_step_fraction(contact));
+  };
   try {
-    for (const BodyTemplate &t : templates_) {
-      if (!t.table_law || t.node_offset.empty()) continue;
-      freestand::ContactBody body{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
-      // Linearised at the overlap of the body resting under its own weight
-      // (Hertz stiffens with overlap; the linear law does not care).
-      double area = 0.0;
-      for (double a : t.node_area) area += a;
-      const double overlap = t.table_law->overlap_under_load(area, t.mass.mass() * scene_.gravity);
-      const freestand::ContactModes modes = freestand::resting_critical_time_step(
-          *t.table_law, t.node_offset, t.node_area, Vector3d::UnitZ(), overlap, body);
-      if (modes.time_step < limit) law = t.table_law;
-      limit = std::min(limit, modes.time_step);
-      recommended = std::min(recommended,
-                             modes.time_step * freestand::recommended_time_step_fraction(*t.table_law));
+    for (std::size_t b = 0; b < templates_.size(); ++b) {
+      const std::string &support = scene_.bodies[b].supported_by;
+      int lower = -1;
+      for (std::size_t k = 0; k < scene_.bodies.size(); ++k)
+        if (scene_.bodies[k].name == support) lower = static_cast<int>(k);
+      consider(static_cast<int>(b), lower,
+               lower < 0 ? *templates_[b].table_law : law_between(static_cast<int>(b), lower));
     }
     if (!law) return;
     char text[256];
