@@ -174,16 +174,18 @@ void FixRigidConvex::build_templates() {
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const freestand::BodySpec &spec = scene_.bodies[b];
     BodyTemplate t{spec.name, freestand::PreparedMassProperties({spec.mass, spec.inertia}, spec.name)};
-    // Nodes only where the body can touch what supports it: its base faces.
-    freestand::NodeOptions options = spec.nodes;
-    options.faces = spec.geometry.base_faces();
-    for (const freestand::ContactNode &node : freestand::make_contact_nodes(spec.geometry, options)) {
-      const auto &face = spec.geometry.pieces()[node.piece].faces()[node.face];
-      t.node_offset.push_back(node.position - spec.com);
-      t.node_area.push_back(node.area);
-      // The dashpot of a node acts on its share of the body (contact_law.h).
-      t.node_mass.push_back(spec.mass * node.area / face.area);
+    // At rest the body stands on its base faces' nodes (critical time step);
+    // against the table it can land on any face (a toppled statue).
+    freestand::NodeOptions base = spec.nodes;
+    base.faces = spec.geometry.base_faces();
+    for (const freestand::ContactNode &node : freestand::make_contact_nodes(spec.geometry, base)) {
+      t.base_offset.push_back(node.position - spec.com);
+      t.base_area.push_back(node.area);
     }
+    t.table_nodes = freestand::make_plane_contact_nodes(spec.geometry, spec.com, spec.mass, spec.nodes);
+    for (std::size_t k = 0; k < t.table_nodes.points(); ++k)
+      acting_.resize(std::max<std::size_t>(acting_.size(),
+                                           t.table_nodes.first_share[k + 1] - t.table_nodes.first_share[k]));
     // Every body can land on the table: with its stated interface, or the
     // defaults (a toppled drum of a column has no stated table interface).
     t.table_law = default_law_.get();
@@ -237,7 +239,7 @@ void FixRigidConvex::create_bodies() {
     s.body = static_cast<int>(b);
     s.orientation = spec.orientation;
     s.angular_momentum = freestand::angular_momentum(spec.orientation, spec.omega, templates_[b].mass);
-    s.table_history.assign(templates_[b].node_offset.size(), freestand::ContactHistory{});
+    s.table_history.assign(templates_[b].table_nodes.shares(), freestand::ContactHistory{});
   }
   atom->natoms += static_cast<bigint>(scene_.bodies.size());
   if (atom->map_style) {
@@ -276,16 +278,16 @@ void FixRigidConvex::check_time_step() {
   // the table (lower < 0) or against the body it stands on.
   auto consider = [&](int upper, int lower, const freestand::ContactLaw &contact) {
     const BodyTemplate &t = templates_[upper];
-    if (t.node_offset.empty()) return;
+    if (t.base_offset.empty()) return;
     const freestand::ContactBody a{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
     double area = 0.0;
-    for (double x : t.node_area) area += x;
+    for (double x : t.base_area) area += x;
     // Linearised at the overlap under the body's own weight (Hertz stiffens
     // with overlap; the linear law does not care).
     const double overlap = contact.overlap_under_load(area, t.mass.mass() * scene_.gravity);
     freestand::ContactModes modes;
     if (lower < 0) {
-      modes = freestand::resting_critical_time_step(contact, t.node_offset, t.node_area,
+      modes = freestand::resting_critical_time_step(contact, t.base_offset, t.base_area,
                                                     Vector3d::UnitZ(), overlap, a);
     } else {
       const freestand::BodySpec &up = scene_.bodies[upper], &down = scene_.bodies[lower];
@@ -293,7 +295,7 @@ void FixRigidConvex::check_time_step() {
                               (up.position + up.orientation * up.com);
       const freestand::ContactBody b{templates_[lower].mass.mass(), templates_[lower].mass.inertia(),
                                      offset};
-      modes = freestand::resting_critical_time_step(contact, t.node_offset, t.node_area,
+      modes = freestand::resting_critical_time_step(contact, t.base_offset, t.base_area,
                                                     Vector3d::UnitZ(), overlap, a, &b);
     }
     if (modes.time_step < limit) law = &contact;
@@ -430,28 +432,40 @@ void FixRigidConvex::table_contact(int i) {
     return;
   }
   const Eigen::Matrix3d rotation = s.orientation.toRotationMatrix();
+  const Vector3d up = rotation.row(2).transpose();  // world z in the body frame
+  const freestand::PlaneContactNodes &nodes = t.table_nodes;
   Vector3d force = Vector3d::Zero(), torque = Vector3d::Zero();
   const double dt = update->dt;
-  for (std::size_t k = 0; k < t.node_offset.size(); ++k) {
-    const Vector3d r = rotation * t.node_offset[k];
-    const double overlap = plane - (com.z() + r.z());
+  for (std::size_t k = 0; k < nodes.points(); ++k) {
+    const double overlap = plane - (com.z() + up.dot(nodes.point[k]));
+    const int first = nodes.first_share[k], end = nodes.first_share[k + 1];
     if (overlap <= 0.0) {
-      s.table_history[k] = freestand::ContactHistory{};
+      for (int share = first; share < end; ++share) s.table_history[share] = freestand::ContactHistory{};
       continue;
     }
-    freestand::ContactPoint contact{Vector3d::UnitZ(), overlap, v + w.cross(r) - table_velocity,
-                                    t.node_area[k], t.node_mass[k]};
-    const freestand::ContactForce result = t.table_law->compute(contact, dt, s.table_history[k]);
-    force += result.force;
-    torque += r.cross(result.force);
-    ++table_contacts_;
-    // Energy ledger: stored energy now; dissipation and the table's work
-    // F . v_table dt with the velocities the law used (not during setup).
-    table_elastic_ += result.elastic_energy();
-    if (!in_setup_) {
-      table_normal_dissipated_ += result.normal_dissipation;
-      table_friction_dissipated_ += result.friction_dissipation;
-      table_work_ += result.force.dot(table_velocity) * dt;
+    const Vector3d r = rotation * nodes.point[k];
+    const int acting = nodes.acting_shares(k, up, acting_.data());
+    // A face that stops acting (the body rolled onto another face) forgets
+    // its tangential spring.
+    for (int share = first, a = 0; share < end; ++share)
+      if (a < acting && acting_[a] == share) ++a;
+      else s.table_history[share] = freestand::ContactHistory{};
+    for (int a = 0; a < acting; ++a) {
+      const int share = acting_[a];
+      freestand::ContactPoint contact{Vector3d::UnitZ(), overlap, v + w.cross(r) - table_velocity,
+                                      nodes.area[share], nodes.dashpot_mass[share]};
+      const freestand::ContactForce result = t.table_law->compute(contact, dt, s.table_history[share]);
+      force += result.force;
+      torque += r.cross(result.force);
+      ++table_contacts_;
+      // Energy ledger: stored energy now; dissipation and the table's work
+      // F . v_table dt with the velocities the law used (not during setup).
+      table_elastic_ += result.elastic_energy();
+      if (!in_setup_) {
+        table_normal_dissipated_ += result.normal_dissipation;
+        table_friction_dissipated_ += result.friction_dissipation;
+        table_work_ += result.force.dot(table_velocity) * dt;
+      }
     }
   }
   for (int k = 0; k < 3; ++k) {

@@ -19,6 +19,7 @@ FixStyle(rigid/convex,FixRigidConvex)
 
 #include "fix.h"
 #include "freestand/contact_law.h"
+#include "freestand/plane_contact_nodes.h"
 #include "freestand/rigid_body.h"
 #include "freestand/scene.h"
 #include "rigid_body_source.h"
@@ -94,9 +95,9 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   struct BodyTemplate {
     std::string name;                              // from the scene
     freestand::PreparedMassProperties mass;        // mass and inertia about the COM
-    std::vector<Eigen::Vector3d> node_offset;      // contact nodes from the COM, body frame (m)
-    std::vector<double> node_area;                 // tributary areas (m^2)
-    std::vector<double> node_mass;                 // effective mass of each node's dashpot (kg)
+    std::vector<Eigen::Vector3d> base_offset;      // base-face nodes from the COM, body frame (m):
+    std::vector<double> base_area;                 //   the body at rest, for the critical time step
+    freestand::PlaneContactNodes table_nodes;      // every face's nodes against the table plane
     const freestand::ContactLaw *table_law;        // contact with the table, or null
     double bounding_radius;                        // atom radius: farthest point from the COM (m)
     std::shared_ptr<freestand::BodyContactModel> contact_model;  // all faces' nodes, for pair convex
@@ -108,7 +109,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
     int body = -1;                                       // index into templates_, -1: not ours
     Eigen::Quaterniond orientation;                      // body frame -> world
     Eigen::Vector3d angular_momentum;                    // world (kg m^2/s)
-    std::vector<freestand::ContactHistory> table_history;  // per contact node
+    std::vector<freestand::ContactHistory> table_history;  // per share of table_nodes
     std::vector<PairHistory> pairs;                      // with bodies in contact (pair convex)
   };
 
@@ -123,6 +124,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   std::unique_ptr<freestand::ContactLaw> default_law_;        // bodies without an interface
   std::vector<BodyTemplate> templates_;             // one per scene body
   std::vector<BodyState> state_;                    // per local atom (size nmax)
+  std::vector<int> acting_;                         // scratch: acting shares of one table node
   std::string table_id_;                            // fix shaketable moving the plane, or empty
   FixShakeTable *table_ = nullptr;                  // resolved in init()
   double plane_z_ = 0.0;                            // table top at rest (m)

@@ -10,8 +10,8 @@ column: N marble drums (regular prisms, circumradius 0.45 m, height 0.6 m) stack
 wall: a dry-stone wall in running bond, COURSES courses of PER_COURSE limestone blocks
   0.4 x 0.2 x 0.2 m (x along the wall); odd courses are shifted by half a block. Every block
   has an explicit "position" (base-face centre) because supported_by places a body on one
-  support only. The bottom course has table interfaces (a body without a table interface
-  does not touch the table); block-on-block contact uses the fix's defaults.
+  support only. The bottom course has table interfaces (a block that falls to the table
+  without one uses the fix's defaults); block-on-block contact uses the fix's defaults.
 """
 import argparse
 import json

@@ -159,3 +159,30 @@ TEST(RigidConvex, MpirunTwoProcessesMatchesSerial) {
   ASSERT_GT(serial.size(), 1000u);
   for (std::size_t k = 0; k < serial.size(); ++k) ASSERT_EQ(serial[k][1], np2[k][1]) << "row " << k;
 }
+
+TEST(RigidConvex, ToppledBlockComesToRestOnItsSide) {
+  // The free-rocking block (0.25 x 0.25 x 1.0 m, 100 kg, corner nodes)
+  // released at rest tilted 0.5 rad about its +x base edge, past its
+  // slenderness alpha = 0.245 rad: it topples and must end lying on its +x
+  // face, held by that face's corners (not fall through the table pivoting
+  // on its base rim). At rest the face's four corners share the weight
+  // equally: the COM sits at the half thickness 0.125 m minus the linear
+  // law's overlap m g / (k_a A_face) = 981 / (1e10 * 0.25) = 3.924e-7 m, and
+  // the block is flat: rock_x = pi/2. Tolerances: 1 % of that overlap
+  // (residual ringing of the damped contact after 2 s and round-off of
+  // z ~ 1e-16 m) and 1e-6 rad.
+  const double theta = 0.5, b = 0.125;
+  const std::string scene = R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.125, 0.125, 0.5],
+      "mass": 100, "nodes": {"layout": "vertices"}, "position": [)" +
+                            fv::num(b - b * std::cos(theta)) + ", 0, " + fv::num(b * std::sin(theta)) +
+                            R"(], "orientation": [)" + fv::num(std::cos(theta / 2)) + ", 0, " +
+                            fv::num(std::sin(theta / 2)) + R"(, 0]}]})";
+  const auto rows = run_block("rigid_convex_toppled", scene, "", "", 2e-5, 3.0, 1000);
+  const auto& last = rows.back();
+  const double overlap = 100 * 9.81 / (1e10 * 0.25);
+  std::cout.precision(10);
+  std::cout << "[validation] toppled block at rest: rock_x " << last[1] << " rad, COM z " << last[4]
+            << " m (closed form " << b - overlap << " m)\n";
+  EXPECT_NEAR(last[1], M_PI / 2, 1e-6);
+  EXPECT_NEAR(last[4], b - overlap, 0.01 * overlap);
+}
