@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -18,6 +17,7 @@
 #include <string_view>
 
 #include "freestand/ground_motion_reader.h"
+#include "csv_cells.h"
 #include "freestand/input_error.h"
 #include "freestand/series_file.h"
 
@@ -305,40 +305,6 @@ void finish(Recording& r, const std::vector<std::string>& bodies, const std::str
 
 // ---- CSV ------------------------------------------------------------------
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_cells(std::string_view line) {
-  std::vector<std::string_view> cells;
-  for (std::size_t begin = 0;;) {
-    const std::size_t comma = line.find(',', begin);
-    cells.push_back(trim(line.substr(begin, comma == std::string_view::npos ? comma : comma - begin)));
-    if (comma == std::string_view::npos) return cells;
-    begin = comma + 1;
-  }
-}
-
-bool is_nan_text(std::string_view cell) {
-  return cell.empty() || (cell.size() == 3 && std::tolower(cell[0]) == 'n' &&
-                          std::tolower(cell[1]) == 'a' && std::tolower(cell[2]) == 'n');
-}
-
-// A cell as a number: NaN for an empty cell or nan (a lost sample).
-double cell_value(std::string_view cell, const std::string& where, std::size_t column,
-                  const std::string& name) {
-  if (is_nan_text(cell)) return kNaN;
-  std::string_view digits = cell;
-  if (digits.front() == '+') digits.remove_prefix(1);
-  double x = 0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
-  if (ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(x))
-    fail(where, fmt::format("column {} ('{}'): '{}' is not a finite number", column, name, cell));
-  return x;
-}
-
 Recording read_csv(const std::string& path, const std::string& sidecar) {
   std::ifstream in(path);
   if (!in) fail(path, "cannot open file");
@@ -358,7 +324,7 @@ Recording read_csv(const std::string& path, const std::string& sidecar) {
   std::vector<int> lines;  // file line of each sample
   for (int line = 2; std::getline(in, text); ++line) {
     if (!text.empty() && text.back() == '\r') text.pop_back();
-    if (trim(text).empty()) continue;
+    if (text.find_first_not_of(" \t") == std::string::npos) continue;
     const std::string where = fmt::format("{}:{}", path, line);
     const std::vector<std::string_view> cells = split_cells(text);
     if (cells.size() != header.size())
@@ -416,6 +382,7 @@ std::optional<std::string> string_attribute(hid_t object, const char* name, cons
   if (H5Tis_variable_str(type.get()) > 0) {
     const Handle memtype(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(memtype.get(), H5T_VARIABLE);
+    H5Tset_cset(memtype.get(), H5Tget_cset(type.get()));  // h5py writes UTF-8
     char* value = nullptr;
     if (H5Aread(attr.get(), memtype.get(), &value) < 0 || !value)
       fail(where, fmt::format("cannot read attribute '{}'", name));
