@@ -9,7 +9,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   libeigen3-dev libhdf5-dev hdf5-tools libvtk9-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
   python3-h5py python3-numpy
 )
 

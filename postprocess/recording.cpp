@@ -1,0 +1,584 @@
+#include "recording.h"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+#include "freestand/ground_motion_reader.h"
+#include "csv_cells.h"
+#include "freestand/input_error.h"
+#include "freestand/series_file.h"
+
+namespace freestand {
+namespace {
+
+using nlohmann::json;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw InputError(fmt::format("{}: {}", where, what));
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool file_exists(const std::string& path) { return std::ifstream(path).good(); }
+
+// ---- what the format knows ------------------------------------------------
+
+// Fields of the format and of the scene vocabulary (src/freestand/scene.cpp),
+// plus freestand's documented extensions (docs/recordings.md).
+const std::set<std::string> kTopFields = {
+    "bodies", "interfaces", "sampling_hz", "sensor_noise", "ground_motion", "gravity",
+    "duration", "lowpass", "columns", "table_height", "units", "source"};
+const std::set<std::string> kBodyFields = {
+    "name", "shape", "half_extents", "radius", "sides", "height", "vertices", "mass", "com",
+    "inertia", "supported_by", "density", "position", "orientation", "velocity", "omega",
+    "nodes", "pieces"};
+const std::set<std::string> kInterfaceFields = {
+    "lower", "upper", "mu", "mu_s", "mu_k", "contact_stiffness", "restitution",
+    "friction_decay", "law", "hertz_reference_overlap"};
+
+// Pose extension columns <body>.x ... <body>.qz and their units.
+const std::map<std::string, std::string> kPoseChannels = {
+    {"x", "m"}, {"y", "m"}, {"z", "m"}, {"qw", "1"}, {"qx", "1"}, {"qy", "1"}, {"qz", "1"}};
+
+bool is_table_channel(const std::string& name) {
+  return name.size() == 8 && name.compare(0, 6, "table_") == 0 &&
+         std::string("avd").find(name[6]) != std::string::npos &&
+         std::string("xyz").find(name[7]) != std::string::npos;
+}
+
+// The sidecar body a column `<body>.<channel>` belongs to (longest match:
+// body names may contain dots), or empty.
+std::string body_of(const std::string& column, const std::vector<std::string>& bodies) {
+  std::string best;
+  for (const std::string& b : bodies)
+    if (column.size() > b.size() + 1 && column.compare(0, b.size() + 1, b + ".") == 0 &&
+        b.size() > best.size())
+      best = b;
+  return best;
+}
+
+// SI unit of a column, "1" for dimensionless, empty when the format does not define it.
+std::string expected_unit(const std::string& column, const std::vector<std::string>& bodies) {
+  if (column == "t") return "s";
+  if (is_table_channel(column)) return column[6] == 'a' ? "m/s^2" : column[6] == 'v' ? "m/s" : "m";
+  const std::string body = body_of(column, bodies);
+  if (body.empty()) return {};
+  const std::string channel = column.substr(body.size() + 1);
+  if (channel == "rock_x" || channel == "rock_y" || channel == "twist") return "rad";
+  if (channel == "slide_x" || channel == "slide_y" || channel == "uplift") return "m";
+  const auto pose = kPoseChannels.find(channel);
+  return pose == kPoseChannels.end() ? std::string() : pose->second;
+}
+
+// Spellings of the SI units (lower case, blanks removed).
+bool same_unit(std::string stated, const std::string& expected) {
+  stated.erase(std::remove_if(stated.begin(), stated.end(),
+                              [](unsigned char c) { return std::isspace(c); }),
+               stated.end());
+  std::transform(stated.begin(), stated.end(), stated.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const std::map<std::string, std::set<std::string>> aliases = {
+      {"s", {"s", "sec", "second", "seconds"}},
+      {"m", {"m", "metre", "metres", "meter", "meters"}},
+      {"m/s", {"m/s", "ms^-1", "m/sec"}},
+      {"m/s^2", {"m/s^2", "m/s2", "m/s/s", "ms^-2"}},
+      {"rad", {"rad", "radian", "radians"}},
+      {"1", {"1", "-", "", "dimensionless"}}};
+  return aliases.at(expected).count(stated) > 0;
+}
+
+void check_unit(const std::string& where, const std::string& column, const std::string& stated,
+                const std::vector<std::string>& bodies) {
+  const std::string expected = expected_unit(column, bodies);
+  if (expected.empty() || same_unit(stated, expected)) return;
+  fail(where, fmt::format("column '{}' is stated in '{}', but recordings are in SI units: "
+                          "expected {}{}", column, stated, expected,
+                          expected == "rad" ? " (radians)" : ""));
+}
+
+// ---- nominal ----------------------------------------------------------------
+
+void warn_unknown(const json& object, const std::set<std::string>& known,
+                  const std::string& where, std::set<std::string>& reported,
+                  std::vector<std::string>& warnings) {
+  for (const auto& [key, value] : object.items())
+    if (!known.count(key) && reported.insert(where + "/" + key).second)
+      warnings.push_back(fmt::format("{}: unknown field '{}' ignored", where, key));
+}
+
+// Checks the sidecar's structure; returns its body names. Unknown fields
+// become warnings (once per field and place, however many bodies carry it).
+std::vector<std::string> check_nominal(const json& nominal, const std::string& source,
+                                       std::vector<std::string>& warnings) {
+  if (!nominal.is_object()) fail(source, "the nominal must be a JSON object");
+  if (!nominal.contains("bodies") || !nominal["bodies"].is_array() || nominal["bodies"].empty())
+    fail(source, "'bodies' must be a non-empty list");
+  std::set<std::string> reported;
+  warn_unknown(nominal, kTopFields, source, reported, warnings);
+  std::vector<std::string> names;
+  for (const json& body : nominal["bodies"]) {
+    if (!body.is_object() || !body.contains("name") || !body["name"].is_string())
+      fail(source, fmt::format("body {}: 'name' (a string) is missing", names.size() + 1));
+    const std::string name = body["name"].get<std::string>();
+    if (name.empty() || name == "table" || name.find_first_of(",/") != std::string::npos)
+      fail(source, fmt::format("body name '{}' is empty, reserved or contains ',' or '/'", name));
+    if (std::count(names.begin(), names.end(), name))
+      fail(source, fmt::format("body name '{}' used twice", name));
+    names.push_back(name);
+    warn_unknown(body, kBodyFields, source + ": bodies[]", reported, warnings);
+  }
+  if (nominal.contains("interfaces"))
+    for (const json& i : nominal["interfaces"])
+      if (i.is_object()) warn_unknown(i, kInterfaceFields, source + ": interfaces[]", reported, warnings);
+  return names;
+}
+
+// "units": "SI", or an object {column: unit}. Anything else is an error.
+void check_stated_units(const json& nominal, const std::string& source,
+                        const std::vector<std::string>& bodies) {
+  if (!nominal.contains("units")) return;
+  const json& units = nominal["units"];
+  if (units.is_string()) {
+    if (units.get<std::string>() != "SI")
+      fail(source, fmt::format("'units' is '{}': recordings are in SI units (s, m, rad)",
+                               units.get<std::string>()));
+    return;
+  }
+  if (!units.is_object()) fail(source, "'units' must be \"SI\" or {\"column\": \"unit\"}");
+  for (const auto& [column, unit] : units.items()) {
+    if (!unit.is_string()) fail(source, fmt::format("'units': '{}' must be a string", column));
+    check_unit(source, column, unit.get<std::string>(), bodies);
+  }
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open the nominal (sidecar) file");
+  try {
+    return json::parse(in);
+  } catch (const json::parse_error& e) {
+    fail(path, fmt::format("not valid JSON: {}", e.what()));
+  }
+}
+
+json parse_json_text(const std::string& text, const std::string& where) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    fail(where, fmt::format("not valid JSON: {}", e.what()));
+  }
+}
+
+// ---- checks common to CSV and HDF5 ---------------------------------------------
+
+// Names a sample in messages: "file:line" (CSV) or "file: sample i" (HDF5).
+using SampleLocator = std::function<std::string(std::size_t)>;
+
+void check_time(const std::vector<double>& t, const SampleLocator& where) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i])) fail(where(i), "time 't' must be a finite number (no lost samples)");
+    if (i > 0 && !(t[i] > t[i - 1]))
+      fail(where(i), fmt::format("time {} does not increase (previous sample: {})", t[i], t[i - 1]));
+  }
+}
+
+// Every column is t, a table channel, a channel of a sidecar body or an
+// extra column (kept, with a warning); every sidecar body has a column.
+void check_columns(Recording& r, const std::vector<std::string>& bodies,
+                   const std::string& sidecar, const std::string& where) {
+  std::set<std::string> seen, bodies_with_columns;
+  for (const RecordingChannel& c : r.channels) {
+    if (c.name.empty()) fail(where, "a column has an empty name");
+    if (c.name == "t" || !seen.insert(c.name).second)
+      fail(where, fmt::format("column '{}' appears twice", c.name));
+    if (is_table_channel(c.name)) continue;
+    const std::string body = body_of(c.name, bodies);
+    const std::size_t dot = c.name.rfind('.');
+    if (body.empty() && dot != std::string::npos)
+      fail(where, fmt::format("column '{}' names body '{}', which is not in {}", c.name,
+                              c.name.substr(0, dot), sidecar));
+    if (!body.empty()) bodies_with_columns.insert(body);
+    if (expected_unit(c.name, bodies).empty())
+      r.warnings.push_back(fmt::format("{}: column '{}' is not a channel of the format; kept as is",
+                                       where, c.name));
+  }
+  for (const std::string& b : bodies)
+    if (!bodies_with_columns.count(b))
+      fail(sidecar, fmt::format("body '{}' has no column in {} (expected e.g. '{}.rock_x')", b,
+                                where, b));
+}
+
+// rock_x and rock_y are atan2 values, so |rock| <= pi in radians; more is a
+// unit error (degrees). The margin covers rounding of pi in a text file.
+void check_rock_range(const Recording& r, const SampleLocator& where) {
+  const double bound = M_PI * (1 + 1e-6);
+  for (const RecordingChannel& c : r.channels) {
+    if (!ends_with(c.name, ".rock_x") && !ends_with(c.name, ".rock_y")) continue;
+    for (std::size_t i = 0; i < c.values.size(); ++i)
+      if (std::fabs(c.values[i]) > bound)
+        fail(where(i), fmt::format("column '{}' = {} exceeds pi: rocking angles are expected in "
+                                   "radians (atan2 of the body axis), not degrees", c.name,
+                                   c.values[i]));
+  }
+}
+
+// ---- table channels -----------------------------------------------------
+
+// Trapezoid integral of y from 0 at its first finite sample; lost samples
+// are bridged linearly (the trapezoid over the gap) and stay NaN.
+std::vector<double> integrate_from_rest(const std::vector<double>& t, const std::vector<double>& y) {
+  std::vector<double> out(t.size(), kNaN);
+  std::optional<std::size_t> previous;
+  double sum = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(y[i])) continue;
+    if (previous) sum += 0.5 * (y[i] + y[*previous]) * (t[i] - t[*previous]);
+    out[i] = sum;
+    previous = i;
+  }
+  return out;
+}
+
+// Derivative of y at its finite samples (second-order differences over the
+// finite samples); NaN where y is lost.
+std::vector<double> differentiate_finite(const std::vector<double>& t, const std::vector<double>& y,
+                                         const std::string& where) {
+  std::vector<double> tf, yf;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (std::isfinite(y[i])) { tf.push_back(t[i]); yf.push_back(y[i]); index.push_back(i); }
+  if (tf.size() < 3) fail(where, "fewer than 3 valid samples to differentiate");
+  const std::vector<double> d = differentiate(tf, yf);
+  std::vector<double> out(t.size(), kNaN);
+  for (std::size_t k = 0; k < index.size(); ++k) out[index[k]] = d[k];
+  return out;
+}
+
+// Per axis: a missing velocity is integrated from the acceleration (from
+// rest) or else differentiated from the displacement; a missing
+// acceleration is differentiated from the velocity; a missing displacement
+// is integrated from the velocity (from zero).
+void derive_table_channels(Recording& r) {
+  for (const char axis : {'x', 'y', 'z'}) {
+    const auto values = [&](char kind) -> std::optional<std::vector<double>> {
+      const RecordingChannel* c = r.find(fmt::format("table_{}{}", kind, axis));
+      return c ? std::optional<std::vector<double>>(c->values) : std::nullopt;
+    };
+    std::optional<std::vector<double>> a = values('a'), v = values('v'), d = values('d');
+    if (!a && !v && !d) continue;
+    const auto add = [&](char kind, std::vector<double> derived) {
+      r.channels.push_back({fmt::format("table_{}{}", kind, axis), derived, true});
+      return derived;
+    };
+    const std::string where = fmt::format("{}: deriving table channels along {}", r.path, axis);
+    if (!v) v = add('v', a ? integrate_from_rest(r.time, *a) : differentiate_finite(r.time, *d, where));
+    if (!a) a = add('a', differentiate_finite(r.time, *v, where));
+    if (!d) d = add('d', integrate_from_rest(r.time, *v));
+  }
+}
+
+// Checks shared by both file kinds, then the derived table channels.
+void finish(Recording& r, const std::vector<std::string>& bodies, const std::string& sidecar,
+            const SampleLocator& where) {
+  check_stated_units(r.nominal, sidecar, bodies);
+  check_columns(r, bodies, sidecar, r.path);
+  check_time(r.time, where);
+  check_rock_range(r, where);
+  derive_table_channels(r);
+}
+
+// ---- CSV ------------------------------------------------------------------
+
+Recording read_csv(const std::string& path, const std::string& sidecar) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open file");
+  Recording r;
+  r.path = path;
+  r.nominal = read_json_file(sidecar);
+  const std::vector<std::string> bodies = check_nominal(r.nominal, sidecar, r.warnings);
+  std::string text;
+  if (!std::getline(in, text)) fail(path, "empty file: expected a header line of column names");
+  if (!text.empty() && text.back() == '\r') text.pop_back();
+  const std::vector<std::string_view> header = split_cells(text);
+  if (header.front() != "t") {
+    const bool has_t = std::find(header.begin(), header.end(), "t") != header.end();
+    fail(path + ":1", has_t ? "column 't' must come first" : "no time column 't'");
+  }
+  for (std::size_t c = 1; c < header.size(); ++c) r.channels.push_back({std::string(header[c]), {}});
+  std::vector<int> lines;  // file line of each sample
+  for (int line = 2; std::getline(in, text); ++line) {
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.find_first_not_of(" \t") == std::string::npos) continue;
+    const std::string where = fmt::format("{}:{}", path, line);
+    const std::vector<std::string_view> cells = split_cells(text);
+    if (cells.size() != header.size())
+      fail(where, fmt::format("{} cells, but the header has {} columns", cells.size(), header.size()));
+    r.time.push_back(cell_value(cells[0], where, 1, "t"));
+    for (std::size_t c = 1; c < cells.size(); ++c)
+      r.channels[c - 1].values.push_back(cell_value(cells[c], where, c + 1, r.channels[c - 1].name));
+    lines.push_back(line);
+  }
+  if (r.time.empty()) fail(path, "no samples after the header line");
+  finish(r, bodies, sidecar, [&](std::size_t i) { return fmt::format("{}:{}", path, lines[i]); });
+  return r;
+}
+
+// ---- HDF5 -------------------------------------------------------------------
+
+// Closes an HDF5 handle on scope exit.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Handle() { if (id_ >= 0) close_(id_); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+// Silences HDF5's error-stack printing while reading: failures become InputError.
+class QuietHdf5 {
+ public:
+  QuietHdf5() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+  QuietHdf5(const QuietHdf5&) = delete;
+  QuietHdf5& operator=(const QuietHdf5&) = delete;
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// A string attribute (fixed or variable length), or nothing if absent.
+std::optional<std::string> string_attribute(hid_t object, const char* name, const std::string& where) {
+  if (H5Aexists(object, name) <= 0) return std::nullopt;
+  const Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  const Handle type(attr.valid() ? H5Aget_type(attr.get()) : -1, H5Tclose);
+  if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING)
+    fail(where, fmt::format("attribute '{}' must be a string", name));
+  if (H5Tis_variable_str(type.get()) > 0) {
+    const Handle memtype(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(memtype.get(), H5T_VARIABLE);
+    H5Tset_cset(memtype.get(), H5Tget_cset(type.get()));  // h5py writes UTF-8
+    char* value = nullptr;
+    if (H5Aread(attr.get(), memtype.get(), &value) < 0 || !value)
+      fail(where, fmt::format("cannot read attribute '{}'", name));
+    std::string out(value);
+    H5free_memory(value);
+    return out;
+  }
+  std::string out(H5Tget_size(type.get()), '\0');
+  if (H5Aread(attr.get(), type.get(), out.data()) < 0)
+    fail(where, fmt::format("cannot read attribute '{}'", name));
+  return out.substr(0, out.find('\0'));
+}
+
+// A 1-D numeric dataset of `group` as doubles, and its units attribute.
+std::vector<double> read_dataset(hid_t group, const std::string& name, const std::string& where,
+                                 std::optional<std::string>& units) {
+  const Handle set(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.valid()) fail(where, fmt::format("{} is not a dataset", name));
+  const Handle space(H5Dget_space(set.get()), H5Sclose);
+  hsize_t n = 0;
+  if (!space.valid() || H5Sget_simple_extent_ndims(space.get()) != 1 ||
+      H5Sget_simple_extent_dims(space.get(), &n, nullptr) < 0)
+    fail(where, fmt::format("{} must be a 1-D dataset", name));
+  std::vector<double> values(n);
+  if (n > 0 && H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+    fail(where, fmt::format("cannot read {} (not numeric, truncated or corrupt)", name));
+  units = string_attribute(set.get(), "units", fmt::format("{}/{}", where, name));
+  return values;
+}
+
+// The datasets of /channels in name order, checked against each other and
+// against their units attributes.
+void read_hdf5_channels(hid_t file, Recording& r, const std::vector<std::string>& bodies) {
+  const std::string where = r.path + ": /channels";
+  if (H5Lexists(file, "/channels", H5P_DEFAULT) <= 0) fail(r.path, "group /channels is missing");
+  const Handle group(H5Gopen2(file, "/channels", H5P_DEFAULT), H5Gclose);
+  H5G_info_t info;
+  if (!group.valid() || H5Gget_info(group.get(), &info) < 0) fail(where, "cannot read the group");
+  bool has_time = false;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    std::vector<char> name(1024, '\0');
+    if (H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                           name.size() - 1, H5P_DEFAULT) < 0)
+      fail(where, "cannot list the group (corrupt file)");
+    const std::string column(name.data());
+    std::optional<std::string> unit;
+    std::vector<double> values = read_dataset(group.get(), column, where, unit);
+    if (unit) check_unit(where + "/" + column, column, *unit, bodies);
+    if (column == "t") {
+      r.time = std::move(values);
+      has_time = true;
+    } else {
+      r.channels.push_back({column, std::move(values)});
+    }
+  }
+  if (!has_time) fail(where, "no time dataset 't'");
+  if (r.time.empty()) fail(where, "/channels/t is empty");
+  for (const RecordingChannel& c : r.channels)
+    if (c.values.size() != r.time.size())
+      fail(where, fmt::format("'{}' has {} samples, 't' has {}", c.name, c.values.size(),
+                              r.time.size()));
+}
+
+Recording read_hdf5(const std::string& path) {
+  const QuietHdf5 quiet;
+  if (!file_exists(path)) fail(path, "cannot open file");
+  const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.valid()) fail(path, "not a readable HDF5 file (truncated or corrupt)");
+  Recording r;
+  r.path = path;
+  const std::string sidecar = path + ": /nominal";
+  const std::optional<std::string> nominal = string_attribute(file.get(), "nominal", path);
+  if (!nominal) fail(path, "attribute /nominal (the nominal JSON text) is missing");
+  r.nominal = parse_json_text(*nominal, sidecar);
+  const std::vector<std::string> bodies = check_nominal(r.nominal, sidecar, r.warnings);
+  read_hdf5_channels(file.get(), r, bodies);
+  finish(r, bodies, sidecar, [&](std::size_t i) { return fmt::format("{}: sample {}", path, i); });
+  return r;
+}
+
+// ---- writing ------------------------------------------------------------------
+
+// Writes `content` to PATH.part, then renames it to PATH.
+void write_atomically(const std::string& path, const std::string& content) {
+  const std::string part = path + ".part";
+  {
+    std::ofstream out(part, std::ios::binary | std::ios::trunc);
+    if (!out) fail(part, "cannot create file");
+    out << content;
+    out.close();
+    if (!out) {
+      std::remove(part.c_str());
+      fail(part, "write failed");
+    }
+  }
+  if (std::rename(part.c_str(), path.c_str()) != 0) {
+    std::remove(part.c_str());
+    fail(path, "cannot rename the finished file into place");
+  }
+}
+
+// The measured (not derived) channels, after checking that the recording
+// can be written.
+std::vector<const RecordingChannel*> written_channels(const Recording& r, const std::string& stem) {
+  if (r.time.empty()) fail(stem, "the recording has no samples");
+  std::vector<const RecordingChannel*> out;
+  for (const RecordingChannel& c : r.channels) {
+    if (c.values.size() != r.time.size())
+      fail(stem, fmt::format("channel '{}' has {} samples, time has {}", c.name, c.values.size(),
+                             r.time.size()));
+    if (c.name.empty() || c.name == "t" || c.name.find_first_of(",/\n") != std::string::npos)
+      fail(stem, fmt::format("channel name '{}' is empty, 't', or contains ',', '/' or a newline",
+                             c.name));
+    if (!c.derived) out.push_back(&c);
+  }
+  return out;
+}
+
+std::string format_value(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "nan"; }
+
+void write_csv(const std::string& stem, const Recording& r,
+               const std::vector<const RecordingChannel*>& columns) {
+  std::ostringstream text;
+  text << 't';
+  for (const RecordingChannel* c : columns) text << ',' << c->name;
+  text << '\n';
+  for (std::size_t i = 0; i < r.time.size(); ++i) {
+    text << format_value(r.time[i]);
+    for (const RecordingChannel* c : columns) text << ',' << format_value(c->values[i]);
+    text << '\n';
+  }
+  write_atomically(stem + ".nominal.json", r.nominal.dump(2) + "\n");
+  write_atomically(stem + ".csv", text.str());
+}
+
+void write_hdf5(const std::string& stem, const Recording& r,
+                const std::vector<const RecordingChannel*>& columns) {
+  const std::vector<std::string> bodies = r.body_names();
+  SeriesFile file(stem + ".h5");
+  file.add_series("/channels/t", "s");
+  for (const RecordingChannel* c : columns)
+    file.add_series("/channels/" + c->name, expected_unit(c->name, bodies));
+  file.set_attribute("/", "nominal", r.nominal.dump());
+  std::vector<double> row(columns.size() + 1);
+  for (std::size_t i = 0; i < r.time.size(); ++i) {
+    row[0] = r.time[i];
+    for (std::size_t c = 0; c < columns.size(); ++c) row[c + 1] = columns[c]->values[i];
+    file.append(row);
+  }
+  file.commit();
+}
+
+}  // namespace
+
+std::vector<std::string> Recording::body_names() const {
+  std::vector<std::string> names;
+  if (nominal.is_object() && nominal.contains("bodies") && nominal["bodies"].is_array())
+    for (const json& b : nominal["bodies"])
+      if (b.is_object() && b.contains("name") && b["name"].is_string())
+        names.push_back(b["name"].get<std::string>());
+  return names;
+}
+
+const RecordingChannel* Recording::find(const std::string& name) const {
+  for (const RecordingChannel& c : channels)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+const std::vector<double>& Recording::body_channel(const std::string& body,
+                                                   const std::string& channel) const {
+  const RecordingChannel* c = find(body + "." + channel);
+  if (!c) fail(path.empty() ? "recording" : path, fmt::format("no column '{}.{}'", body, channel));
+  return c->values;
+}
+
+const std::vector<double>* Recording::table_channel(char kind, char axis) const {
+  const RecordingChannel* c = find(fmt::format("table_{}{}", kind, axis));
+  return c ? &c->values : nullptr;
+}
+
+Recording read_recording(const std::string& path) {
+  const auto stem_of = [&](std::size_t suffix_length) { return path.substr(0, path.size() - suffix_length); };
+  if (ends_with(path, ".csv")) return read_csv(path, stem_of(4) + ".nominal.json");
+  if (ends_with(path, ".h5") || ends_with(path, ".hdf5")) return read_hdf5(path);
+  for (const char* suffix : {".csv", ".h5", ".hdf5"})
+    if (file_exists(path + suffix)) return read_recording(path + suffix);
+  fail(path, "no recording: neither PATH.csv, PATH.h5 nor PATH.hdf5 exists");
+}
+
+void write_recording(const std::string& path_stem, const Recording& recording, bool hdf5) {
+  const std::vector<const RecordingChannel*> columns = written_channels(recording, path_stem);
+  std::vector<std::string> warnings;
+  check_nominal(recording.nominal, path_stem + ".nominal.json", warnings);
+  if (hdf5) write_hdf5(path_stem, recording, columns);
+  else write_csv(path_stem, recording, columns);
+}
+
+}  // namespace freestand
