@@ -117,7 +117,8 @@ std::string write_vtk_series(const std::string& directory, const std::vector<Ser
                              const SeriesHistory& history, VtkSeriesOptions options = {});
 
 // Velocities of samples `positions` at `time` by central differences
-// (one-sided at the ends); exact for quadratic motion on a uniform grid.
+// (one-sided at the ends); on a uniform grid exact for quadratic motion
+// except at the ends (off by a dt / 2).
 std::vector<Eigen::Vector3d> differentiate_positions(const std::vector<double>& time,
                                                      const std::vector<Eigen::Vector3d>& positions);
 
