@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   python3-h5py python3-numpy
+  chromium
 )
 
 missing=()
