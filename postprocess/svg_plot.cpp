@@ -419,10 +419,11 @@ std::vector<Polyline> display_polylines(const std::vector<double>& x, const std:
   const std::size_t n = std::min(x.size(), y.size());
   std::size_t bucket_start = 0;
   long bucket_column = 0;
+  const double per_unit = x_hi > x_lo ? std::max(columns, 1) / (x_hi - x_lo) : 0;  // no range: one column
   auto column_of = [&](double v) {
     // Samples left or right of the range share one bucket each side.
-    return static_cast<long>(std::clamp(std::floor((v - x_lo) / (x_hi - x_lo) * columns), -1.0,
-                                        static_cast<double>(columns)));
+    return static_cast<long>(std::clamp(std::floor((v - x_lo) * per_unit), -1.0,
+                                        static_cast<double>(std::max(columns, 1))));
   };
   auto flush_bucket = [&](std::size_t end) {  // samples [bucket_start, end)
     if (end <= bucket_start) return;

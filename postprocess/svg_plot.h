@@ -18,7 +18,7 @@ namespace freestand::svg {
 // palette without its yellow, which is used to shade windows.
 const std::vector<std::string>& palette();
 inline constexpr const char* kWindowColour = "#F0E442";
-inline constexpr const char* kFrameColour = "#333333";  // plot frame, nothing else
+inline constexpr const char* kFrameColour = "#333333";  // plot frame and its ticks only
 
 struct Axis {
   std::string label;               // quantity, e.g. "rock_x"

@@ -119,6 +119,13 @@ TEST(DisplayPolylines, ShortSeriesPassUnchanged) {
   EXPECT_EQ(lines[0].size(), 4u);
 }
 
+TEST(DisplayPolylines, EmptyRangeIsOneColumn) {
+  const std::vector<double> t{1, 1, 1, 1, 1}, y{0, 3, -2, 1, 0.5};
+  const auto lines = display_polylines(t, y, 1, 1, 800);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0], (Polyline{{1, 0}, {1, 3}, {1, -2}, {1, 0.5}}));  // first, max, min, last
+}
+
 TEST(DisplayPolylines, NaNInXOrYBreaksTheLine) {
   const std::vector<double> t{0, 1, 2, 3, kNaN, 5, 6, 7}, y{0, 1, kNaN, 3, 4, 5, 6, 7};
   const auto lines = display_polylines(t, y, 0, 7, 800);
