@@ -11,7 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
   python3-h5py python3-numpy
-  paraview xvfb xauth
+  paraview xvfb xauth chromium
 )
 
 # pvpython renders the ParaView series (postprocess/render_frame.py). Debian 12's
