@@ -151,6 +151,10 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
         error->all(FLERR, "fix rigid/convex: law must be linear or hertz");
     }
     else if (key == "tangential_damping") continue;  // tangential_damping_keyword()
+    else if (key == "timestep") {
+      if (std::strcmp(value, "auto") != 0) error->all(FLERR, "fix rigid/convex: timestep takes 'auto'");
+      auto_time_step_ = true;
+    }
     else if (key == "spacing") defaults.nodes.spacing = freestand::parse_number(error, "fix rigid/convex", "spacing", value);
     else if (key == "layout") {
       const std::string layout = value;
@@ -313,9 +317,13 @@ void FixRigidConvex::check_time_step() {
                lower < 0 ? *templates_[b].table_law : law_between(static_cast<int>(b), lower));
     }
     if (!law) return;
+    // timestep auto: the run takes the accurate step (set before anything
+    // integrates with it; a run's steps are counted with the new dt).
+    if (auto_time_step_) update->dt = recommended;
     char text[256];
     snprintf(text, sizeof(text), "critical time step %.3g s; accurate restitution needs %.3g s or "
-             "less; timestep is %.3g s", limit, recommended, update->dt);
+             "less; timestep is %.3g s%s", limit, recommended, update->dt,
+             auto_time_step_ ? " (timestep auto)" : "");
     note(lmp, text);
     freestand::check_time_step(*law, update->dt, limit, "fix rigid/convex");
   } catch (const freestand::InputError &e) {
@@ -654,7 +662,7 @@ void FixRigidConvex::gather_poses(std::vector<freestand::BodyPose> &poses,
     if (s.body < 0) continue;
     const double quaternion[4] = {s.orientation.w(), s.orientation.x(), s.orientation.y(),
                                   s.orientation.z()};
-    gatherer.add(s.body, atom->x[i], quaternion);
+    gatherer.add(s.body, atom->x[i], quaternion, atom->v[i], atom->omega[i]);
   }
   gatherer.gather(world, poses, present);
 }

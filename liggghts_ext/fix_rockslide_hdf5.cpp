@@ -4,7 +4,12 @@
 #include "fix_rockslide_hdf5.h"
 
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "comm.h"
 #include "compute_rockslide.h"
@@ -13,29 +18,50 @@
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "modify.h"
+#include "universe.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
 
 namespace {
 
-const char *const kPoseNames[] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
-const char *const kPoseUnits[] = {"m", "m", "m", "1", "1", "1", "1"};
+const char *const kStateNames[] = {"x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
+const char *const kStateUnits[] = {"m", "m", "m", "1", "1", "1", "1", "m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s"};
+// The energy ledger of fix rigid/convex (docs/fix_rigid_convex.md): global
+// vector entry (1-based) and dataset name; entry 2 is a contact count.
+const std::pair<int, const char *> kLedger[] = {
+    {1, "kinetic"}, {3, "potential"}, {4, "elastic"}, {5, "normal_dissipation"},
+    {6, "friction_dissipation"}, {7, "table_work"}, {8, "balance"}};
 const char *const kTableNames[] = {"ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
 const char *const kTableUnits[] = {"m/s^2", "m/s^2", "m/s^2", "m/s", "m/s", "m/s", "m", "m", "m"};
 
 }  // namespace
 
-// fix ID group rockslide/hdf5 COMPUTE-ID N FILE
+// fix ID group rockslide/hdf5 COMPUTE-ID N FILE [energy FIX-ID] [scenario FILE]
 FixRockSlideHDF5::FixRockSlideHDF5(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
-  if (narg != 6)
-    error->all(FLERR, "Illegal fix rockslide/hdf5 command: fix ID group rockslide/hdf5 COMPUTE-ID N FILE");
+  if (narg < 6 || narg % 2 != 0)
+    error->all(FLERR, "Illegal fix rockslide/hdf5 command: fix ID group rockslide/hdf5 COMPUTE-ID N FILE "
+                      "[energy FIX-ID] [scenario FILE]");
   compute_id_ = arg[3];
   char *end = nullptr;
   nevery = static_cast<int>(std::strtol(arg[4], &end, 10));
   if (*end != '\0' || nevery <= 0)
     error->all(FLERR, "fix rockslide/hdf5: N (sample every N steps) must be a positive integer");
   path_ = arg[5];
+  for (int i = 6; i < narg; i += 2) {
+    if (!std::strcmp(arg[i], "energy")) {
+      energy_id_ = arg[i + 1];
+    } else if (!std::strcmp(arg[i], "scenario")) {
+      std::ifstream in(arg[i + 1]);
+      if (!in) error->all(FLERR, (std::string("fix rockslide/hdf5: cannot read scenario file ") + arg[i + 1]).c_str());
+      std::ostringstream text;
+      text << in.rdbuf();
+      scenario_text_ = text.str();
+    } else {
+      error->all(FLERR, (std::string("fix rockslide/hdf5: unknown keyword '") + arg[i] +
+                         "' (expected energy or scenario)").c_str());
+    }
+  }
 }
 
 FixRockSlideHDF5::~FixRockSlideHDF5() {
@@ -54,6 +80,11 @@ void FixRockSlideHDF5::init() {
   compute_ = icompute < 0 ? nullptr : dynamic_cast<ComputeRockSlide *>(modify->compute[icompute]);
   if (!compute_)
     error->all(FLERR, ("fix rockslide/hdf5: '" + compute_id_ + "' is not a compute rockslide").c_str());
+  if (energy_id_.empty()) return;
+  const int ifix = modify->find_fix(energy_id_.c_str());
+  energy_ = ifix < 0 ? nullptr : modify->fix[ifix];
+  if (!energy_ || std::strcmp(energy_->style, "rigid/convex") != 0)
+    error->all(FLERR, ("fix rockslide/hdf5: energy '" + energy_id_ + "' is not a fix rigid/convex").c_str());
 }
 
 void FixRockSlideHDF5::open_file() {
@@ -61,6 +92,10 @@ void FixRockSlideHDF5::open_file() {
   file_->set_attribute("/", "creator", "freestand fix rockslide/hdf5");
   file_->set_attribute("/", "channel_definitions", "see recording-format.md: rock_x, rock_y, twist, "
                        "slide_x, slide_y, uplift; pose = centre of mass and body-to-world quaternion");
+  file_->set_attribute("/", "freestand_version", FREESTAND_VERSION);
+  file_->set_attribute("/", "liggghts_version", universe->version);
+  file_->set_attribute("/", "time_step", fmt::format("{:.17g} s", update->dt));
+  if (!scenario_text_.empty()) file_->set_attribute("/", "scenario", scenario_text_);
   file_->add_series("/time", "s");
   if (compute_->table())
     for (int k = 0; k < 9; ++k) file_->add_series(std::string("/table/") + kTableNames[k], kTableUnits[k]);
@@ -69,8 +104,10 @@ void FixRockSlideHDF5::open_file() {
     const std::string group = "/bodies/" + body.name + "/";
     for (const auto &channel : names)
       file_->add_series(group + channel, channel.rfind("rock", 0) == 0 || channel == "twist" ? "rad" : "m");
-    for (int k = 0; k < 7; ++k) file_->add_series(group + kPoseNames[k], kPoseUnits[k]);
+    for (int k = 0; k < 13; ++k) file_->add_series(group + kStateNames[k], kStateUnits[k]);
   }
+  if (energy_)
+    for (const auto &[entry, name] : kLedger) file_->add_series(std::string("/energy/") + name, "J");
 }
 
 void FixRockSlideHDF5::setup(int) { end_of_step(); }
@@ -79,10 +116,13 @@ void FixRockSlideHDF5::end_of_step() {
   if (update->ntimestep == last_written_) return;
   last_written_ = update->ntimestep;
   if (compute_->invoked_array != update->ntimestep) compute_->compute_array();
-  if (comm->me == 0) write_sample();
+  std::vector<double> energy;  // collective: every rank asks the fix
+  if (energy_)
+    for (const auto &[entry, name] : kLedger) energy.push_back(energy_->compute_vector(entry - 1));
+  if (comm->me == 0) write_sample(energy);
 }
 
-void FixRockSlideHDF5::write_sample() {
+void FixRockSlideHDF5::write_sample(const std::vector<double> &energy) {
   // Opened at the first sample, once the compute has resolved its table.
   if (!file_) {
     try {
@@ -101,9 +141,12 @@ void FixRockSlideHDF5::write_sample() {
   const auto &poses = compute_->channels().own_poses();
   for (std::size_t i = 0; i < poses.size(); ++i) {
     for (int j = 0; j < compute_->size_array_cols; ++j) row.push_back(compute_->array[i][j]);
-    const Eigen::Quaterniond &q = poses[i].orientation;
-    row.insert(row.end(), {poses[i].com.x(), poses[i].com.y(), poses[i].com.z(), q.w(), q.x(), q.y(), q.z()});
+    const freestand::BodyPose &p = poses[i];
+    const Eigen::Quaterniond &q = p.orientation;
+    row.insert(row.end(), {p.com.x(), p.com.y(), p.com.z(), q.w(), q.x(), q.y(), q.z(), p.velocity.x(),
+                           p.velocity.y(), p.velocity.z(), p.omega.x(), p.omega.y(), p.omega.z()});
   }
+  row.insert(row.end(), energy.begin(), energy.end());
   try {
     file_->append(row);
   } catch (const freestand::InputError &e) {

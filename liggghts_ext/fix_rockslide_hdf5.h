@@ -13,6 +13,7 @@ FixStyle(rockslide/hdf5,FixRockSlideHDF5)
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fix.h"
 #include "freestand/series_file.h"
@@ -33,11 +34,14 @@ class FixRockSlideHDF5 : public Fix {
 
  private:
   void open_file();
-  void write_sample();
+  void write_sample(const std::vector<double> &energy);
 
   std::string compute_id_;                        // ID of the compute rockslide
   std::string path_;                              // final file name
+  std::string energy_id_;                         // fix whose global vector is the energy ledger, or ""
+  std::string scenario_text_;                     // stored as the root attribute "scenario", or ""
   ComputeRockSlide *compute_ = nullptr;           // resolved in init()
+  Fix *energy_ = nullptr;                         // resolved in init(), with energy_id_
   std::unique_ptr<freestand::SeriesFile> file_;   // open on rank 0 only
   bigint last_written_ = -1;                      // time step of the last sample
 };

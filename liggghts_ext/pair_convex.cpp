@@ -80,6 +80,7 @@ void PairConvex::compute(int eflag, int vflag) {
   if (eflag || vflag) ev_setup(eflag, vflag);
   else evflag = vflag_fdotr = 0;
   ledger_.elastic = 0.0;
+  pair_forces_.clear();
   for (int ii = 0; ii < list->inum; ++ii) {
     const int i = list->ilist[ii];
     if (bodies_->body_of(i) < 0) continue;
@@ -89,6 +90,22 @@ void PairConvex::compute(int eflag, int vflag) {
       if (bodies_->body_of(j) >= 0) contact_pair(i, j);
     }
   }
+  apply_pair_forces();
+}
+
+// Each body's pair forces summed in the order of the partners' tags: the
+// floating-point sum is then independent of how atoms are ordered on a rank
+// (neighbour lists, migration, restart), so runs on any number of ranks and
+// restarted runs match the serial, uninterrupted one bit for bit.
+void PairConvex::apply_pair_forces() {
+  std::sort(pair_forces_.begin(), pair_forces_.end(), [](const PairForce &x, const PairForce &y) {
+    return x.atom != y.atom ? x.atom < y.atom : x.partner < y.partner;
+  });
+  for (const PairForce &p : pair_forces_)
+    for (int k = 0; k < 3; ++k) {
+      atom->f[p.atom][k] += p.force[k];
+      atom->torque[p.atom][k] += p.torque[k];
+    }
 }
 
 namespace {
@@ -142,14 +159,6 @@ void PairConvex::contact_pair(int i, int j) {
             [](const auto &x, const auto &y) { return x.first < y.first; });
   if (copy_a) copy_a->entries = updated_;
   if (copy_b) copy_b->entries = updated_;
-  for (int k = 0; k < 3; ++k) {
-    if (a < nlocal) {
-      atom->f[a][k] += force_a[k];
-      atom->torque[a][k] += torque_a[k];
-    }
-    if (b < nlocal) {
-      atom->f[b][k] += force_b[k];
-      atom->torque[b][k] += torque_b[k];
-    }
-  }
+  if (a < nlocal) pair_forces_.push_back({a, atom->tag[b], force_a, torque_a});
+  if (b < nlocal) pair_forces_.push_back({b, atom->tag[a], force_b, torque_b});
 }

@@ -41,13 +41,23 @@ class PairConvex : public Pair {
   const EnergyLedger &ledger() const { return ledger_; }
 
  private:
+  // A pair's force and torque on one local body, applied after all pairs.
+  struct PairForce {
+    int atom;                 // local index of the body
+    tagint partner;           // tag of the other body
+    Eigen::Vector3d force;    // N
+    Eigen::Vector3d torque;   // N m, about the body's COM
+  };
+
   void allocate();
   void contact_pair(int i, int j);
+  void apply_pair_forces();
 
   FixRigidConvex *bodies_ = nullptr;                  // resolved in init_style()
   freestand::BodyContactOptions options_;             // band, pass weight
   std::vector<freestand::NodeContact> contacts_;      // reused every pair
   std::vector<std::pair<std::uint64_t, freestand::ContactHistory>> updated_;  // reused
+  std::vector<PairForce> pair_forces_;                // this step's, reused
   EnergyLedger ledger_;
 };
 

@@ -29,10 +29,12 @@ class MultisphereBodySource : public RigidBodySource {
     for (int i = 0; i < bodies.n_body(); ++i) {
       const int tag = bodies.tag(i);
       if (tag < 1 || tag > n) continue;
-      double com[3], quaternion[4];
+      double com[3], quaternion[4], velocity[3], omega[3];
       bodies.xcm(com, i);
       bodies.quat(quaternion, i);
-      gatherer.add(tag - 1, com, quaternion);
+      bodies.vcm(velocity, i);
+      bodies.omega(omega, i);
+      gatherer.add(tag - 1, com, quaternion, velocity, omega);
     }
     gatherer.gather(world_, poses, present);
   }
@@ -44,11 +46,14 @@ class MultisphereBodySource : public RigidBodySource {
 
 }  // namespace
 
-void PoseGatherer::add(int index, const double com[3], const double quaternion_wxyz[4]) {
+void PoseGatherer::add(int index, const double com[3], const double quaternion_wxyz[4],
+                       const double velocity[3], const double omega[3]) {
   double *row = &rows_[kRow * index];
   row[0] = 1.0;
   std::copy(com, com + 3, row + 1);
   std::copy(quaternion_wxyz, quaternion_wxyz + 4, row + 4);
+  std::copy(velocity, velocity + 3, row + 8);
+  std::copy(omega, omega + 3, row + 11);
 }
 
 void PoseGatherer::gather(MPI_Comm world, std::vector<freestand::BodyPose> &poses,
@@ -64,6 +69,8 @@ void PoseGatherer::gather(MPI_Comm world, std::vector<freestand::BodyPose> &pose
     present[b] = row[0] > 0.5;
     poses[b].com = Eigen::Vector3d(row[1], row[2], row[3]);
     poses[b].orientation = Eigen::Quaterniond(row[4], row[5], row[6], row[7]).normalized();
+    poses[b].velocity = Eigen::Vector3d(row[8], row[9], row[10]);
+    poses[b].omega = Eigen::Vector3d(row[11], row[12], row[13]);
   }
 }
 

@@ -2,7 +2,7 @@
 #define FREESTAND_RIGID_BODY_SOURCE_H
 
 // What compute rockslide needs from a fix that integrates rigid bodies: the
-// pose of every body, gathered on all ranks. Stock fix multisphere is adapted
+// pose and velocities of every body, gathered on all ranks. Stock fix multisphere is adapted
 // by MultisphereBodySource; freestand's own rigid-body fixes implement this
 // interface directly.
 
@@ -38,11 +38,12 @@ class RigidBodySource {
 class PoseGatherer {
  public:
   explicit PoseGatherer(int bodies) : rows_(kRow * bodies, 0.0) {}
-  void add(int index, const double com[3], const double quaternion_wxyz[4]);
+  void add(int index, const double com[3], const double quaternion_wxyz[4], const double velocity[3],
+           const double omega[3]);
   void gather(MPI_Comm world, std::vector<freestand::BodyPose> &poses, std::vector<char> &present);
 
  private:
-  static constexpr int kRow = 8;  // present flag, com (3), quaternion w x y z (4)
+  static constexpr int kRow = 14;  // present flag, com (3), quaternion w x y z (4), velocity (3), omega (3)
   std::vector<double> rows_;      // kRow numbers per body, zero where absent
 };
 

@@ -1,5 +1,7 @@
 #include "html_report.h"
 
+#include "atomic_file.h"
+
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -145,23 +147,6 @@ std::string HtmlReport::html() const {
   return out + "</body>\n</html>\n";
 }
 
-void HtmlReport::write(const std::string& path) const {
-  const std::string part = path + ".part";
-  {
-    std::ofstream file(part, std::ios::binary | std::ios::trunc);
-    if (!file) throw InputError(fmt::format("{}: cannot create ({})", part, std::strerror(errno)));
-    file << html();
-    file.close();
-    if (!file) {
-      std::remove(part.c_str());
-      throw InputError(fmt::format("{}: write failed (disk full?)", part));
-    }
-  }
-  if (std::rename(part.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(part.c_str());
-    throw InputError(fmt::format("{}: cannot rename to {} ({})", part, path, reason));
-  }
-}
+void HtmlReport::write(const std::string& path) const { write_file_atomically(path, html()); }
 
 }  // namespace freestand

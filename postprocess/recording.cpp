@@ -17,7 +17,9 @@
 #include <string_view>
 
 #include "freestand/ground_motion_reader.h"
+#include "atomic_file.h"
 #include "csv_cells.h"
+#include "hdf5_read.h"
 #include "freestand/input_error.h"
 #include "freestand/series_file.h"
 
@@ -341,95 +343,17 @@ Recording read_csv(const std::string& path, const std::string& sidecar) {
 
 // ---- HDF5 -------------------------------------------------------------------
 
-// Closes an HDF5 handle on scope exit.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() { if (id_ >= 0) close_(id_); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-// Silences HDF5's error-stack printing while reading: failures become InputError.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// A string attribute (fixed or variable length), or nothing if absent.
-std::optional<std::string> string_attribute(hid_t object, const char* name, const std::string& where) {
-  if (H5Aexists(object, name) <= 0) return std::nullopt;
-  const Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  const Handle type(attr.valid() ? H5Aget_type(attr.get()) : -1, H5Tclose);
-  if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING)
-    fail(where, fmt::format("attribute '{}' must be a string", name));
-  if (H5Tis_variable_str(type.get()) > 0) {
-    const Handle memtype(H5Tcopy(H5T_C_S1), H5Tclose);
-    H5Tset_size(memtype.get(), H5T_VARIABLE);
-    H5Tset_cset(memtype.get(), H5Tget_cset(type.get()));  // h5py writes UTF-8
-    char* value = nullptr;
-    if (H5Aread(attr.get(), memtype.get(), &value) < 0 || !value)
-      fail(where, fmt::format("cannot read attribute '{}'", name));
-    std::string out(value);
-    H5free_memory(value);
-    return out;
-  }
-  std::string out(H5Tget_size(type.get()), '\0');
-  if (H5Aread(attr.get(), type.get(), out.data()) < 0)
-    fail(where, fmt::format("cannot read attribute '{}'", name));
-  return out.substr(0, out.find('\0'));
-}
-
-// A 1-D numeric dataset of `group` as doubles, and its units attribute.
-std::vector<double> read_dataset(hid_t group, const std::string& name, const std::string& where,
-                                 std::optional<std::string>& units) {
-  const Handle set(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!set.valid()) fail(where, fmt::format("{} is not a dataset", name));
-  const Handle space(H5Dget_space(set.get()), H5Sclose);
-  hsize_t n = 0;
-  if (!space.valid() || H5Sget_simple_extent_ndims(space.get()) != 1 ||
-      H5Sget_simple_extent_dims(space.get(), &n, nullptr) < 0)
-    fail(where, fmt::format("{} must be a 1-D dataset", name));
-  std::vector<double> values(n);
-  if (n > 0 && H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    fail(where, fmt::format("cannot read {} (not numeric, truncated or corrupt)", name));
-  units = string_attribute(set.get(), "units", fmt::format("{}/{}", where, name));
-  return values;
-}
-
 // The datasets of /channels in name order, checked against each other and
 // against their units attributes.
 void read_hdf5_channels(hid_t file, Recording& r, const std::vector<std::string>& bodies) {
   const std::string where = r.path + ": /channels";
-  if (H5Lexists(file, "/channels", H5P_DEFAULT) <= 0) fail(r.path, "group /channels is missing");
-  const Handle group(H5Gopen2(file, "/channels", H5P_DEFAULT), H5Gclose);
-  H5G_info_t info;
-  if (!group.valid() || H5Gget_info(group.get(), &info) < 0) fail(where, "cannot read the group");
+  if (!hdf5::exists(file, "/channels")) fail(r.path, "group /channels is missing");
+  const hdf5::Handle group(H5Gopen2(file, "/channels", H5P_DEFAULT), H5Gclose);
+  if (!group.valid()) fail(where, "cannot read the group");
   bool has_time = false;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    std::vector<char> name(1024, '\0');
-    if (H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                           name.size() - 1, H5P_DEFAULT) < 0)
-      fail(where, "cannot list the group (corrupt file)");
-    const std::string column(name.data());
+  for (const std::string& column : hdf5::member_names(group.get(), where)) {
     std::optional<std::string> unit;
-    std::vector<double> values = read_dataset(group.get(), column, where, unit);
+    std::vector<double> values = hdf5::read_dataset(group.get(), column, where, unit);
     if (unit) check_unit(where + "/" + column, column, *unit, bodies);
     if (column == "t") {
       r.time = std::move(values);
@@ -447,14 +371,12 @@ void read_hdf5_channels(hid_t file, Recording& r, const std::vector<std::string>
 }
 
 Recording read_hdf5(const std::string& path) {
-  const QuietHdf5 quiet;
-  if (!file_exists(path)) fail(path, "cannot open file");
-  const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file.valid()) fail(path, "not a readable HDF5 file (truncated or corrupt)");
+  const hdf5::Quiet quiet;
+  const hdf5::Handle file(hdf5::open_file(path), H5Fclose);
   Recording r;
   r.path = path;
   const std::string sidecar = path + ": /nominal";
-  const std::optional<std::string> nominal = string_attribute(file.get(), "nominal", path);
+  const std::optional<std::string> nominal = hdf5::string_attribute(file.get(), "nominal", path);
   if (!nominal) fail(path, "attribute /nominal (the nominal JSON text) is missing");
   r.nominal = parse_json_text(*nominal, sidecar);
   const std::vector<std::string> bodies = check_nominal(r.nominal, sidecar, r.warnings);
@@ -464,25 +386,6 @@ Recording read_hdf5(const std::string& path) {
 }
 
 // ---- writing ------------------------------------------------------------------
-
-// Writes `content` to PATH.part, then renames it to PATH.
-void write_atomically(const std::string& path, const std::string& content) {
-  const std::string part = path + ".part";
-  {
-    std::ofstream out(part, std::ios::binary | std::ios::trunc);
-    if (!out) fail(part, "cannot create file");
-    out << content;
-    out.close();
-    if (!out) {
-      std::remove(part.c_str());
-      fail(part, "write failed");
-    }
-  }
-  if (std::rename(part.c_str(), path.c_str()) != 0) {
-    std::remove(part.c_str());
-    fail(path, "cannot rename the finished file into place");
-  }
-}
 
 // The measured (not derived) channels, after checking that the recording
 // can be written.
@@ -514,8 +417,8 @@ void write_csv(const std::string& stem, const Recording& r,
     for (const RecordingChannel* c : columns) text << ',' << format_value(c->values[i]);
     text << '\n';
   }
-  write_atomically(stem + ".nominal.json", r.nominal.dump(2) + "\n");
-  write_atomically(stem + ".csv", text.str());
+  write_file_atomically(stem + ".nominal.json", r.nominal.dump(2) + "\n");
+  write_file_atomically(stem + ".csv", text.str());
 }
 
 void write_hdf5(const std::string& stem, const Recording& r,

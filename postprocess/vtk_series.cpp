@@ -1,5 +1,7 @@
 #include "vtk_series.h"
 
+#include "atomic_file.h"
+
 #include <fmt/format.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -33,13 +35,6 @@ namespace fs = std::filesystem;
 constexpr double kTableMargin = 0.25;
 constexpr double kTableThickness = 0.05;
 
-// Renames `part` to `path`, replacing an older `path` only now that `part` is complete.
-void commit(const std::string& part, const std::string& path) {
-  std::error_code error;
-  fs::rename(part, path, error);
-  if (error) throw InputError(fmt::format("{}: cannot rename to {}: {}", part, path, error.message()));
-}
-
 void write_polydata(vtkPolyData* data, const std::string& path) {
   const std::string part = path + ".part";
   vtkNew<vtkXMLPolyDataWriter> writer;
@@ -52,19 +47,9 @@ void write_polydata(vtkPolyData* data, const std::string& path) {
   if (writer->Write() != 1 || writer->GetErrorCode() != vtkErrorCode::NoError)
     throw InputError(fmt::format("{}: cannot write ({})", part,
                                  vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())));
-  commit(part, path);
+  publish_file(part, path);
 }
 
-void write_text(const std::string& text, const std::string& path) {
-  const std::string part = path + ".part";
-  {
-    std::ofstream out(part, std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) throw InputError(fmt::format("{}: cannot write", part));
-  }
-  commit(part, path);
-}
 
 vtkNew<vtkDoubleArray> make_array(const char* name, int components) {
   vtkNew<vtkDoubleArray> array;
@@ -297,7 +282,7 @@ std::string VtkSeriesWriter::finish() {
       text += fmt::format("    <DataSet timestep=\"{}\" part=\"0\" file=\"{}\"/>\n", times_[i],
                           fs::path(frame_path(kind, i)).filename().string());
     text += "  </Collection>\n</VTKFile>\n";
-    write_text(text, (fs::path(directory_) / (kind + ".pvd")).string());
+    write_file_atomically((fs::path(directory_) / (kind + ".pvd")).string(), text);
   }
   return (fs::path(directory_) / "bodies.pvd").string();
 }

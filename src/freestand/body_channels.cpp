@@ -45,7 +45,7 @@ std::vector<ModeChannels> BodyChannels::update(const std::vector<BodyPose>& sour
       frame_offset_[i] = bodies_[i].source_frame_is_own
                              ? Eigen::Quaterniond::Identity()
                              : pose.orientation.conjugate() * bodies_[i].initial_frame;
-    own_[i] = {pose.com, (pose.orientation * *frame_offset_[i]).normalized()};
+    own_[i] = {pose.com, (pose.orientation * *frame_offset_[i]).normalized(), pose.velocity, pose.omega};
     known_[i] = 1;
   }
   std::vector<ModeChannels> channels(n);

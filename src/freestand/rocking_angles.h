@@ -14,6 +14,8 @@ namespace freestand {
 struct BodyPose {
   Eigen::Vector3d com;             // centre of mass, world frame (m)
   Eigen::Quaterniond orientation;  // rotation from the body's own frame to the world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // of the centre of mass, world (m/s)
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();     // angular velocity, world (rad/s)
 };
 
 // What the channels need to know of a body's shape, in its own frame

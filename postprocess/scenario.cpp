@@ -1,0 +1,255 @@
+#include "scenario.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "freestand/ground_motion_reader.h"
+#include "freestand/input_error.h"
+#include "freestand/scene.h"
+
+namespace freestand {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw InputError(fmt::format("{}: {}", where, what));
+}
+
+// Keys of fix shaketable's per-axis options that a table_motion axis may set
+// (docs/fix_shaketable.md); `record` and `motion` choose the source.
+const char* const kAxisKeys[] = {"units", "format", "column", "differentiate", "scale", "pga", "skip",
+                                 "duration", "baseline", "amplitude", "frequency", "frequency_end", "width"};
+const char* const kMotions[] = {"sine", "onesine", "ricker", "rectangle", "sweep"};
+// Keys of `contact`: fix rigid/convex keywords for what the bodies and
+// interfaces leave unstated.
+const char* const kContactKeys[] = {"stiffness", "restitution", "mu", "law", "layout", "spacing",
+                                    "tangential_damping"};
+
+json* child(json& node, const std::string& key, const std::string& assignment) {
+  if (node.is_array()) {
+    const bool index = !key.empty() && std::all_of(key.begin(), key.end(), ::isdigit);
+    if (index && std::stoul(key) < node.size()) return &node[std::stoul(key)];
+    for (json& element : node)
+      if (element.is_object() && element.value("name", "") == key) return &element;
+    fail("override '" + assignment + "'", "no element '" + key + "' (an index or a \"name\")");
+  }
+  if (!node.is_object()) fail("override '" + assignment + "'", "'" + key + "' is below a plain value");
+  return &node[key];
+}
+
+// An option value as fix shaketable reads it: numbers in full precision,
+// booleans as yes/no, [value, "unit"] pairs as "value unit".
+std::string option_value(const json& value, const std::string& where) {
+  if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
+  if (value.is_number()) return fmt::format("{:.17g}", value.get<double>());
+  if (value.is_string()) {
+    const std::string text = value.get<std::string>();
+    if (text.empty() || text.find_first_of("\"'#$&") != std::string::npos)
+      fail(where, "'" + text + "' cannot be passed to LIGGGHTS (empty, or contains \" ' # $ &)");
+    return text;
+  }
+  if (value.is_array() && value.size() == 2 && value[0].is_number() && value[1].is_string())
+    return option_value(value[0], where) + " " + option_value(value[1], where);
+  fail(where, "expected a number, a string, true/false or [value, \"unit\"]");
+}
+
+std::string resolve_path(const Scenario& scenario, const std::string& path) {
+  fs::path p(path);
+  if (p.is_relative() && !scenario.path.empty()) p = fs::path(scenario.path).parent_path() / p;
+  return fs::absolute(p).lexically_normal().string();
+}
+
+// fix shaketable arguments of one axis, and the record's length (s; 0 for
+// analytic motions) for the default duration.
+std::string axis_arguments(const Scenario& scenario, const std::string& axis, const json& spec,
+                           double* record_length) {
+  const std::string where = scenario.path + ": table_motion." + axis;
+  if (!spec.is_object()) fail(where, "expected an object with \"record\" or \"motion\"");
+  std::string args = axis + " ";
+  *record_length = 0.0;
+  if (spec.contains("record")) {
+    const std::string path = resolve_path(scenario, spec.at("record").get<std::string>());
+    if (path.find_first_of(" \"'#$&") != std::string::npos)
+      fail(where, "record path '" + path + "' contains a space or one of \" ' # $ &: LIGGGHTS cannot take it");
+    RecordSource source{path, spec.value("format", "auto"), spec.contains("column") ? option_value(spec["column"], where) : "",
+                        spec.contains("units") ? option_value(spec["units"], where) : ""};
+    const GroundRecord record = read_ground_record(source);
+    *record_length = record.t.back() - record.t.front() - spec.value("skip", 0.0);
+    args += "record " + path;
+  } else if (spec.contains("motion")) {
+    const std::string motion = spec.at("motion").get<std::string>();
+    if (std::find(std::begin(kMotions), std::end(kMotions), motion) == std::end(kMotions))
+      fail(where, "motion '" + motion + "' is not one of sine, onesine, ricker, rectangle, sweep");
+    args += motion;
+  } else {
+    fail(where, "needs \"record\": FILE or \"motion\": sine | onesine | ricker | rectangle | sweep");
+  }
+  for (const auto& [key, value] : spec.items()) {
+    if (key == "record" || key == "motion") continue;
+    if (std::find(std::begin(kAxisKeys), std::end(kAxisKeys), key) == std::end(kAxisKeys))
+      fail(where, "unknown key '" + key + "' (see docs/scenario.md)");
+    args += " " + key + " " + option_value(value, where + "." + key);
+  }
+  return args;
+}
+
+// The body extent, for the simulation box: every body's bounding sphere at
+// its initial position, padded for rocking, toppling and table travel.
+struct Extent {
+  double lo[3] = {1e300, 1e300, 1e300};
+  double hi[3] = {-1e300, -1e300, -1e300};
+};
+Extent body_extent(const Scene& scene) {
+  Extent e;
+  for (const BodySpec& body : scene.bodies) {
+    const Eigen::Vector3d centre = body.position + body.orientation * body.com;
+    const double r = body.geometry.bounding_radius(body.com);
+    for (int k = 0; k < 3; ++k) {
+      e.lo[k] = std::min(e.lo[k], centre[k] - r);
+      e.hi[k] = std::max(e.hi[k], centre[k] + r);
+    }
+  }
+  return e;
+}
+
+// pair_style convex weight: bodies with corner nodes only touch another body
+// in one of the two passes (full weight); face grids are seen by both passes
+// on flush faces (half weight each). docs/pair_convex.md.
+double pass_weight(const Scene& scene) {
+  for (const BodySpec& body : scene.bodies)
+    if (body.nodes.layout != NodeLayout::kVertices) return 0.5;
+  return 1.0;
+}
+
+}  // namespace
+
+void apply_override(json& document, const std::string& assignment) {
+  const std::size_t equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+    fail("override '" + assignment + "'", "expected key=value, e.g. simulation.duration=10");
+  const std::string key = assignment.substr(0, equals), text = assignment.substr(equals + 1);
+  json* node = &document;
+  std::stringstream path(key);
+  for (std::string part; std::getline(path, part, '.');) {
+    if (part.empty()) fail("override '" + assignment + "'", "empty key part");
+    node = child(*node, part, assignment);
+  }
+  const json parsed = json::parse(text, nullptr, false);
+  *node = parsed.is_discarded() ? json(text) : parsed;
+}
+
+Scenario read_scenario(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open the scenario file");
+  Scenario scenario;
+  scenario.path = path;
+  try {
+    scenario.document = json::parse(in);
+  } catch (const json::parse_error& e) {
+    fail(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (!scenario.document.is_object()) fail(path, "a scenario is a JSON object");
+  for (const std::string& o : overrides) apply_override(scenario.document, o);
+  return scenario;
+}
+
+RunSettings run_settings(const Scenario& scenario) {
+  const json& doc = scenario.document;
+  const json sim = doc.value("simulation", json::object());
+  const std::string where = scenario.path + ": simulation";
+  RunSettings s;
+  if (sim.contains("duration")) s.duration = sim.at("duration").get<double>();
+  else if (doc.contains("duration")) s.duration = doc.at("duration").get<double>();
+  const json step = sim.value("time_step", json("auto"));
+  s.time_step = step.is_number() ? fmt::format("{:.17g}", step.get<double>()) : step.get<std::string>();
+  if (s.time_step != "auto" && !(step.is_number() && step.get<double>() > 0))
+    fail(where + ".time_step", "must be \"auto\" or a positive number of seconds");
+  s.output_rate = sim.value("output_rate", doc.value("sampling_hz", 200.0));
+  if (!(s.output_rate > 0)) fail(where + ".output_rate", "must be positive (samples per second)");
+  s.processes = sim.value("processes", 1);
+  if (s.processes < 1) fail(where + ".processes", "must be at least 1");
+  return s;
+}
+
+GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
+  const json& doc = scenario.document;
+  GeneratedRun run;
+  run.settings = run_settings(scenario);
+  // The scene: bodies and interfaces (and gravity), checked now so that a
+  // bad body is reported against the scenario file before LIGGGHTS starts.
+  run.scene = json::object();
+  for (const char* key : {"bodies", "interfaces", "gravity"})
+    if (doc.contains(key)) run.scene[key] = doc[key];
+  const Scene scene = parse_scene(run.scene, scenario.path);
+
+  std::string table = "", table_height = fmt::format("{:.17g}", doc.value("table_height", 0.0));
+  double longest_record = 0.0;
+  if (doc.contains("table_motion")) {
+    for (const auto& [axis, spec] : doc.at("table_motion").items()) {
+      if (axis != "x" && axis != "y" && axis != "z")
+        fail(scenario.path + ": table_motion", "axes are x, y and z, not '" + axis + "'");
+      double length = 0.0;
+      table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec, &length);
+      longest_record = std::max(longest_record, length);
+    }
+  }
+  if (run.settings.duration <= 0) run.settings.duration = longest_record;
+  if (!(run.settings.duration > 0))
+    fail(scenario.path, "no simulation.duration, and no recorded table motion to take it from");
+
+  std::string contact;
+  const json defaults = doc.value("contact", json::object());
+  for (const auto& [key, value] : defaults.items()) {
+    if (std::find(std::begin(kContactKeys), std::end(kContactKeys), key) == std::end(kContactKeys))
+      fail(scenario.path + ": contact", "unknown key '" + key + "' (see docs/scenario.md)");
+    contact += " " + key + " " + option_value(value, scenario.path + ": contact." + key);
+  }
+  const Extent e = body_extent(scene);
+  const double reach = std::max({e.hi[2] - std::min(e.lo[2], 0.0), 1.0});  // room to topple
+  const bool moving = !table.empty();
+
+  std::string s;
+  s += fmt::format("# Generated by `freestand run` from {}.\n", scenario.path);
+  s += "# Edit and rerun: freestand-lmp -in " + files.script + "   (docs/scenario.md)\n";
+  s += fmt::format("variable duration index {:.17g}   # simulated time [s]\n", run.settings.duration);
+  s += fmt::format("variable rate     index {:.17g}   # results samples per simulated second\n\n",
+                   run.settings.output_rate);
+  s += "atom_style      sphere\natom_modify     map array sort 0 0.0\nboundary        f f f\n"
+       "newton          off\ncommunicate     single vel yes\nunits           si\nprocessors      * 1 1\n";
+  s += fmt::format("region          domain block {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} units box\n",
+                   e.lo[0] - reach - 1, e.hi[0] + reach + 1, e.lo[1] - reach - 1, e.hi[1] + reach + 1,
+                   std::min(e.lo[2], 0.0) - reach, e.hi[2] + reach);
+  s += "create_box      1 domain\n";
+  s += fmt::format("neighbor        {:.3g} bin\nneigh_modify    delay 0\n", 0.05);
+  s += fmt::format("timestep        {}\n\n", run.settings.time_step == "auto" ? "1e-5   # replaced: timestep auto"
+                                                                                : run.settings.time_step);
+  if (moving) s += "fix             shake all shaketable " + table + " plane " + table_height + "\n";
+  s += "fix             bodies all rigid/convex scene " + files.scene +
+       (moving ? " table shake" : " plane " + table_height) + contact +
+       (run.settings.time_step == "auto" ? " timestep auto" : "") + "\n";
+  if (scene.bodies.size() > 1)
+    s += fmt::format("pair_style      convex pass_weight {:g}\npair_coeff      * *\n", pass_weight(scene));
+  s += fmt::format("fix             grav all gravity {:.17g} vector 0 0 -1\n", scene.gravity);
+  s += std::string("compute         rs all rockslide bodies") + (moving ? " table shake" : "") + "\n";
+  s += "run             0 post no      # settles dt (timestep auto) before the step count\n";
+  s += "variable        nsteps equal round(v_duration/dt)\n"
+       "variable        nout equal max(1,round(1/(v_rate*dt)))\n"
+       "variable        nthermo equal max(1,ceil(v_nsteps/100))\n";
+  s += "fix             h5 all rockslide/hdf5 rs ${nout} " + files.results + " energy bodies scenario " +
+       files.scenario + "\n";
+  s += "thermo_style    custom step time f_bodies[1] cpu\nthermo          ${nthermo}\n";
+  s += "print           \"freestand: steps ${nsteps}\"\n";
+  s += "run             ${nsteps}\n";
+  run.script = s;
+  return run;
+}
+
+}  // namespace freestand

@@ -1,0 +1,58 @@
+#ifndef FREESTAND_POST_SCENARIO_H
+#define FREESTAND_POST_SCENARIO_H
+
+// A scenario: what `freestand run` simulates (docs/scenario.md). Its bodies
+// and interfaces are those of a recording's nominal.json (so a recording's
+// sidecar plus a table motion is a scenario); `table_motion`, `contact` and
+// `simulation` say how the table moves, what is assumed where the bodies
+// state nothing, and how to run. The scenario becomes a readable LIGGGHTS
+// input script for freestand-lmp.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace freestand {
+
+struct Scenario {
+  std::string path;           // file it was read from; relative paths in it resolve from its folder
+  nlohmann::json document;    // the scenario, overrides applied
+  std::vector<std::string> notes;  // defaults applied and fields ignored, for the user
+};
+
+// Reads a scenario file and applies `overrides` ("key=value", key a dotted
+// path such as simulation.duration, interfaces.0.mu or bodies.tower.mass:
+// array elements by index or by "name"; value JSON if it parses, else a
+// string). Throws InputError naming the file, field or override at fault.
+Scenario read_scenario(const std::string& path, const std::vector<std::string>& overrides = {});
+void apply_override(nlohmann::json& document, const std::string& assignment);
+
+// How to run it, with defaults resolved (docs/scenario.md).
+struct RunSettings {
+  double duration = 0.0;        // simulated time (s)
+  std::string time_step;        // "auto" (the fix's accurate step) or a number in s, as text
+  double output_rate = 0.0;     // samples per simulated second in results.h5 (Hz)
+  int processes = 1;            // MPI ranks
+};
+RunSettings run_settings(const Scenario& scenario);
+
+// Names of the files a run writes in its directory.
+struct RunFiles {
+  std::string script = "run.in";          // the LIGGGHTS input script
+  std::string scene = "scene.json";       // bodies and interfaces for fix rigid/convex
+  std::string scenario = "scenario.json"; // the scenario as run (overrides applied)
+  std::string results = "results.h5";
+};
+
+// The input script (and the scene it reads), ready to be written into the
+// run directory. Paths of records are made absolute.
+struct GeneratedRun {
+  std::string script;          // text of RunFiles::script
+  nlohmann::json scene;        // content of RunFiles::scene
+  RunSettings settings;
+};
+GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files = {});
+
+}  // namespace freestand
+
+#endif
