@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -168,4 +169,26 @@ TEST(ConvexDistributedBase, OneCellPerEdgeIsHousner) {
   std::cout << row("k_a 1e10, e 0.01, per_edge 1", r) << "\n";
   ASSERT_GE(r.size(), 3u);
   for (double x : r) EXPECT_NEAR(loss_ratio(x), 1.0, 0.01);
+}
+
+// The tables of docs/validation.md ("Convex bodies: distributed base"): r of
+// the first three impacts against grid, stiffness and restitution, with the
+// Winkler reference and Housner. About 10 minutes; run with
+// --gtest_also_run_disabled_tests.
+TEST(ConvexDistributedBase, DISABLED_Sweep) {
+  // dt: converged to 1e-5 in r (halved at 1e8 and 1e10); scales as 1/sqrt(k_a).
+  auto step = [](double k) { return k <= 1e8 ? 1e-5 : k <= 1e9 ? 3e-6 : k <= 1e10 ? 1e-6 : 3e-7; };
+  auto sweep = [&](const Contact& c, const std::vector<int>& grids) {
+    const std::string label = "k_a " + fv::num(c.stiffness) + ", e " + fv::num(c.restitution);
+    for (int n : grids)
+      std::cout << row(label + ", per_edge " + std::to_string(n), grid_ratios(n, c, step(c.stiffness)))
+                << std::endl;
+    std::cout << row(label + ", Winkler reference", winkler_ratios(c, std::min(2e-6, step(c.stiffness) / 2)))
+              << std::endl;
+  };
+  std::cout << "[measured] Housner r = " << kHousner.e() << std::endl;
+  sweep({1e8, 0.1}, {1, 2, 4, 8, 16, 32, 64});
+  sweep({1e10, 0.01}, {1, 2, 4, 8, 16, 32});
+  for (double k : {1e8, 1e9, 1e11}) sweep({k, 0.01}, {1, 16, 32});
+  for (double e : {0.1, 0.3, 0.5}) sweep({1e10, e}, {1, 16, 32});
 }
