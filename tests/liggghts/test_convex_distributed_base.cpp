@@ -179,7 +179,9 @@ TEST(ConvexDistributedBase, DISABLED_Sweep) {
   // dt: converged to 1e-5 in r (halved at 1e8 and 1e10); scales as 1/sqrt(k_a).
   auto step = [](double k) { return k <= 1e8 ? 1e-5 : k <= 1e9 ? 3e-6 : k <= 1e10 ? 1e-6 : 3e-7; };
   auto sweep = [&](const Contact& c, const std::vector<int>& grids) {
-    const std::string label = "k_a " + fv::num(c.stiffness) + ", e " + fv::num(c.restitution);
+    std::ostringstream label_stream;
+    label_stream << "k_a " << c.stiffness << ", e " << c.restitution;
+    const std::string label = label_stream.str();
     for (int n : grids)
       std::cout << row(label + ", per_edge " + std::to_string(n), grid_ratios(n, c, step(c.stiffness)))
                 << std::endl;
