@@ -14,10 +14,11 @@
 //   delta(s) = s sin(theta) + h cos(theta) - z      (z: height of the COM),
 // the per-node law of contact_law.h with the node's area shrunk to zero. p is
 // linear in s on the interval where both conditions hold, so the resultant
-// and its moment are integrated in closed form. Tangentially the base does
-// not slip: the horizontal velocity of the base point under the centre of
-// pressure is zero while any pressure acts (a workless constraint; the point
-// moves along the base as the pressure does). Fixed-step RK4.
+// and its moment are integrated in closed form. Tangentially the base is
+// rigid and does not slip: while any pressure acts, the base point under the
+// centre of pressure has no horizontal acceleration (a pivot that moves along
+// the base with the pressure; the horizontal motion then does not enter the
+// forces and is not integrated). Fixed-step RK4.
 
 #include <vector>
 
