@@ -116,12 +116,15 @@ TEST(WallMpi, TwoRanksMatchSerialAndRestartContinuesExactly) {
   const auto end = dump_rows(dir / ("serial." + std::to_string(2 * kStepsPerHalf) + ".txt"));
   for (std::size_t i = 0; i < start.size(); ++i) crossed += (start[i][1] < 0) != (end[i][1] < 0);
   std::cout << "[validation] wall: " << crossed << " bodies on the other rank's side at 1 s than at 0 s\n";
-  // Issue 3: within 1e-6 relative over one simulated second.
-  EXPECT_LT(worst, 1e-6);
+  // Issue 3 asks for 1e-6 relative over one simulated second. Pair forces
+  // are summed per body in partner-tag order (pair_convex.cpp), so the
+  // two-rank run does the serial arithmetic: identical, not just close.
+  EXPECT_EQ(worst, 0.0);
   EXPECT_GT(crossed, 0);
 
-  // The resumed run must equal the uninterrupted one exactly (same ranks,
-  // same arithmetic, restart files store doubles exactly).
+  // The resumed run must equal the uninterrupted one exactly (restart files
+  // store doubles exactly; the atoms' order on a rank after read_restart does
+  // not change the sums, as above).
   const std::string at_end = "." + std::to_string(2 * kStepsPerHalf) + ".txt";
   const auto np2 = dump_rows(dir / ("np2" + at_end)), resumed = dump_rows(dir / ("resumed" + at_end));
   ASSERT_EQ(resumed.size(), np2.size());
