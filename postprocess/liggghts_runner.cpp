@@ -61,7 +61,9 @@ std::string default_liggghts_executable() {
 }
 
 LiggghtsOutcome run_liggghts(const LiggghtsRun& run, const std::function<void(long, long)>& progress) {
-  const std::string launcher = run.processes > 1 ? mpirun(run.processes) + " " : "";
+  // stdbuf: LIGGGHTS writes its screen output through C stdio, block-buffered
+  // into a pipe; line buffering lets progress arrive as it happens.
+  const std::string launcher = (run.processes > 1 ? mpirun(run.processes) + " " : "") + "stdbuf -oL ";
   const std::string command = "cd " + shell_quote(run.directory) + " && " + launcher +
                               shell_quote(run.executable) + " -in " + shell_quote(run.script) + " -log " +
                               shell_quote(run.log) + " < /dev/null 2>&1";

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "freestand/body_channels.h"
@@ -90,11 +91,15 @@ Recording results_as_recording(const Results& results) {
     rec.nominal["bodies"] = json::array();
     for (const BodyResults& b : results.bodies) rec.nominal["bodies"].push_back({{"name", b.name}});
   }
-  for (const char* kind : {"a", "v", "d"})
-    for (const char* axis : {"x", "y", "z"}) {
-      const auto it = results.table.find(std::string(kind) + axis);
-      if (it != results.table.end()) rec.channels.push_back({fmt::format("table_{}{}", kind, axis), it->second});
-    }
+  // Table channels of the axes along which the table moved.
+  for (const char* axis : {"x", "y", "z"}) {
+    const auto moved = results.table.find(std::string("d") + axis);
+    if (moved == results.table.end() ||
+        std::all_of(moved->second.begin(), moved->second.end(), [](double d) { return d == 0.0; }))
+      continue;
+    for (const char* kind : {"a", "v", "d"})
+      rec.channels.push_back({fmt::format("table_{}{}", kind, axis), results.table.at(std::string(kind) + axis)});
+  }
   for (const BodyResults& b : results.bodies) {
     for (const std::string& channel : channel_names()) rec.channels.push_back({b.name + "." + channel, b.at(channel)});
     for (const char* pose : {"x", "y", "z", "qw", "qx", "qy", "qz"})

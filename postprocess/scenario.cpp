@@ -241,8 +241,8 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
   s += std::string("compute         rs all rockslide bodies") + (moving ? " table shake" : "") + "\n";
   s += "run             0 post no      # settles dt (timestep auto) before the step count\n";
   s += "variable        nsteps equal round(v_duration/dt)\n"
-       "variable        nout equal max(1,round(1/(v_rate*dt)))\n"
-       "variable        nthermo equal max(1,ceil(v_nsteps/100))\n";
+       "variable        nout equal round(1/(v_rate*dt))+(round(1/(v_rate*dt))<1)\n"
+       "variable        nthermo equal ceil(v_nsteps/100)\n";
   s += "fix             h5 all rockslide/hdf5 rs ${nout} " + files.results + " energy bodies scenario " +
        files.scenario + "\n";
   s += "thermo_style    custom step time f_bodies[1] cpu\nthermo          ${nthermo}\n";

@@ -181,7 +181,7 @@ vtkNew<vtkPolyData> contacts_polydata(const SeriesFrame& frame, const std::vecto
   auto force = make_array("force", 3);
   auto body = make_int_array("body_name_index");
   auto other = make_int_array("other_name_index");
-  for (const ContactForce& c : frame.contacts) {
+  for (const ContactVector& c : frame.contacts) {
     vertices->InsertNextCell(1);
     vertices->InsertCellPoint(points->InsertNextPoint(c.point.data()));
     force->InsertNextTuple(c.force.data());
@@ -231,7 +231,7 @@ void VtkSeriesWriter::check(const SeriesFrame& frame) const {
       throw InputError(fmt::format("{}: body '{}': non-finite position or non-unit quaternion", where,
                                    bodies_[b].name));
   }
-  for (const ContactForce& c : frame.contacts) {
+  for (const ContactVector& c : frame.contacts) {
     const int n = static_cast<int>(bodies_.size());
     if (c.body < 0 || c.body >= n || c.other < -1 || c.other >= n)
       throw InputError(fmt::format("{}: contact between unknown bodies {} and {}", where, c.body, c.other));

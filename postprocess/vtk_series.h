@@ -37,7 +37,7 @@ struct BodyState {
 };
 
 // A contact force drawn as a vector at its point of application.
-struct ContactForce {
+struct ContactVector {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world (m)
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on `body` (N)
   int body = 0;                                     // index into the SeriesBody list
@@ -48,7 +48,7 @@ struct SeriesFrame {
   double time = 0.0;                                              // s
   Eigen::Vector3d table_displacement = Eigen::Vector3d::Zero();   // m
   std::vector<BodyState> bodies;                                  // one per SeriesBody, same order
-  std::vector<ContactForce> contacts;
+  std::vector<ContactVector> contacts;
 };
 
 struct VtkSeriesOptions {
@@ -107,7 +107,7 @@ struct SeriesHistory {
   std::vector<double> time;                           // s, strictly increasing
   std::vector<double> table_dx, table_dy, table_dz;   // m; empty: table at rest
   std::vector<BodyHistory> bodies;                    // one per SeriesBody, same order
-  std::vector<std::vector<ContactForce>> contacts;    // per sample; empty: none
+  std::vector<std::vector<ContactVector>> contacts;    // per sample; empty: none
 };
 
 // Writes a whole history (every options.stride-th sample) and returns the path

@@ -1,0 +1,21 @@
+#ifndef FREESTAND_CLI_COMMANDS_H
+#define FREESTAND_CLI_COMMANDS_H
+
+// The subcommands of `freestand`, one file each (postprocess/cli/NAME_command.cpp):
+// each adds itself to the application with its options and its callback.
+
+#include <CLI/CLI.hpp>
+
+namespace freestand::cli {
+
+void add_run_command(CLI::App& app);
+void add_post_command(CLI::App& app);
+
+// Runs a subcommand's `body` (which returns its exit status), turning
+// InputError and other exceptions into one message on stderr and status 1;
+// a non-zero status ends the program with it.
+void guarded(const std::function<int()>& body);
+
+}  // namespace freestand::cli
+
+#endif
