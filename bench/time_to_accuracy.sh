@@ -79,17 +79,19 @@ PY
 freestand "k_a 1e10, e 0.1, layout surface, 4 per edge" 4e-5 1e10 0.1 "$work/surface.json"
 
 # MuJoCo: its defaults (dt 2e-3, solref 0.02 1, solimp 0.9 0.95 0.001, Euler,
-# pyramidal cone, Newton), then the stiffest contact refsafe allows
-# (timeconst = 2 dt, critically damped), then also a harder impedance and the
-# elliptic cone.
+# pyramidal cone, Newton), then the stiffest contact its refsafe allows
+# (timeconst = 2 dt, critically damped; timeconst = dt with refsafe off blows
+# up), alone and with a harder impedance, the elliptic cone, impratio, RK4.
+stiffest() { local dt=$1; shift; mujoco "solref 2dt 1$label" "$dt" --solref "$(awk -v d="$dt" 'BEGIN { print 2 * d }') 1" "$@"; }
 for dt in 2e-3 1e-3 5e-4 2.5e-4; do mujoco "defaults" $dt; done
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do
-  mujoco "solref 2dt 1" $dt --solref "$(awk -v d=$dt 'BEGIN { print 2 * d }') 1"
-done
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do
-  mujoco "solref 2dt 1, solimp 0.99 0.99, elliptic" $dt --solref "$(awk -v d=$dt 'BEGIN { print 2 * d }') 1" \
-    --solimp "0.99 0.99 0.001 0.5 2" --cone elliptic
-done
+label=""
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt; done
+label=", solimp 0.99 0.99, elliptic"
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt --solimp "0.99 0.99 0.001 0.5 2" --cone elliptic; done
+label=", elliptic, impratio 10"
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt --cone elliptic --impratio 10; done
+label=", RK4"
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4; do stiffest $dt --integrator RK4; done
 
 awk -F'|' -v tend="$tend" -v repeat="$repeat" '
   {
