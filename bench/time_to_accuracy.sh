@@ -67,7 +67,7 @@ block=free_rocking_block.json
 for dt in 8e-5 6e-5 4e-5 2e-5; do freestand "k_a 1e10, e 0.1 (defaults)" $dt 1e10 0.1 $block; done
 for dt in 5.4e-5 4e-5 2e-5; do freestand "k_a 1e10, e 0.05" $dt 1e10 0.05 $block; done
 for dt in 7.7e-5 6e-5 4e-5 2e-5 1e-5; do freestand "k_a 5e9, e 0.05" $dt 5e9 0.05 $block; done
-for dt in 1.15e-4 9e-5 6e-5 1e-5; do freestand "k_a 5e9, e 0.1" $dt 5e9 0.1 $block; done
+for dt in 1.15e-4 1.05e-4 9e-5 6e-5 1e-5; do freestand "k_a 5e9, e 0.1" $dt 5e9 0.1 $block; done
 for dt in 1e-4 6e-5 1e-5; do freestand "k_a 3e9, e 0.05" $dt 3e9 0.05 $block; done
 # The default distributed base instead of corner nodes: face grid, 4 cells per edge.
 python3 - "$root/inputs/convex/$block" "$work/surface.json" <<'PY'
