@@ -26,49 +26,18 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 results="$work/results"
 
-now() { date +%s.%N; }
-least() { awk -v a="$1" -v b="$2" 'BEGIN { print (b == "" || a + 0 < b + 0) ? a : b }'; }
-
-# freestand LABEL DT K E SCENE: tangential_damping normal throughout.
-freestand() {
-  local label=$1 dt=$2 k=$3 e=$4 scene=$5 loop="" whole="" t0 t nout
-  local run=("$build/freestand-lmp" -in free_rocking.in -var dt "$dt" -var tend "$tend" -var k "$k"
-             -var e "$e" -var zt normal -var scene "$scene" -log "$work/log" -screen /dev/null)
-  nout=$(awk -v dt="$dt" -v s="$sample" 'BEGIN { n = int(s / dt + 0.5); print n < 1 ? 1 : n }')
-  cd "$root/inputs/convex"
-  "${run[@]}" -var nout "$nout" -var out "$work/record" > /dev/null
-  for _ in $(seq "$repeat"); do
-    t0=$(now)
-    "${run[@]}" -var nout 0 > /dev/null
-    whole=$(least "$(awk -v a="$t0" -v b="$(now)" 'BEGIN { print b - a }')" "$whole")
-    t=$(grep -a '^Loop time' "$work/log" | awk '{ print $4 }')
-    loop=$(least "$t" "$loop")
-  done
-  cd "$root"
-  echo "freestand|$label|$dt|$loop|$whole|$("$build/housner_error" "$work/record")" >> "$results"
-}
-
-# mujoco LABEL DT [mujoco_free_rocking options]
-mujoco() {
-  local label=$1 dt=$2 loop="" whole="" t0 t
-  shift 2
-  for _ in $(seq "$repeat"); do
-    t0=$(now)
-    t=$("$build/mujoco_free_rocking" --dt "$dt" --tend "$tend" --sample "$sample" --out "$work/record" "$@" |
-        awk '{ print $2 }')
-    whole=$(least "$(awk -v a="$t0" -v b="$(now)" 'BEGIN { print b - a }')" "$whole")
-    loop=$(least "$t" "$loop")
-  done
-  echo "mujoco|$label|$dt|$loop|$whole|$("$build/housner_error" "$work/record")" >> "$results"
-}
+# Cases: engine|label|dt|settings, settings ';'-separated (freestand: k_a;e;scene,
+# tangential_damping normal throughout; mujoco: mujoco_free_rocking options).
+cases=()
+add() { cases+=("$1|$2|$3|$4"); }
 
 # freestand: Housner's corner contact (layout vertices, the scene's nodes).
 block=free_rocking_block.json
-for dt in 8e-5 6e-5 4e-5 2e-5; do freestand "k_a 1e10, e 0.1 (defaults)" $dt 1e10 0.1 $block; done
-for dt in 5.4e-5 4e-5 2e-5; do freestand "k_a 1e10, e 0.05" $dt 1e10 0.05 $block; done
-for dt in 7.7e-5 6e-5 4e-5 2e-5 1e-5; do freestand "k_a 5e9, e 0.05" $dt 5e9 0.05 $block; done
-for dt in 1.15e-4 1.05e-4 9e-5 6e-5 1e-5; do freestand "k_a 5e9, e 0.1" $dt 5e9 0.1 $block; done
-for dt in 1e-4 6e-5 1e-5; do freestand "k_a 3e9, e 0.05" $dt 3e9 0.05 $block; done
+for dt in 8e-5 6e-5 4e-5 2e-5; do add freestand "k_a 1e10, e 0.1 (defaults)" $dt "1e10;0.1;$block"; done
+for dt in 5.4e-5 4e-5 2e-5; do add freestand "k_a 1e10, e 0.05" $dt "1e10;0.05;$block"; done
+for dt in 7.7e-5 6e-5 4e-5 2e-5 1e-5; do add freestand "k_a 5e9, e 0.05" $dt "5e9;0.05;$block"; done
+for dt in 1.15e-4 1.05e-4 9e-5 6e-5 1e-5; do add freestand "k_a 5e9, e 0.1" $dt "5e9;0.1;$block"; done
+for dt in 1e-4 6e-5 1e-5; do add freestand "k_a 3e9, e 0.05" $dt "3e9;0.05;$block"; done
 # The default distributed base instead of corner nodes: face grid, 4 cells per edge.
 python3 - "$root/inputs/convex/$block" "$work/surface.json" <<'PY'
 import json, sys
@@ -76,22 +45,65 @@ scene = json.load(open(sys.argv[1]))
 scene["bodies"][0]["nodes"] = {"layout": "surface", "per_edge": 4}
 json.dump(scene, open(sys.argv[2], "w"))
 PY
-freestand "k_a 1e10, e 0.1, layout surface, 4 per edge" 4e-5 1e10 0.1 "$work/surface.json"
+add freestand "k_a 1e10, e 0.1, layout surface, 4 per edge" 4e-5 "1e10;0.1;$work/surface.json"
 
 # MuJoCo: its defaults (dt 2e-3, solref 0.02 1, solimp 0.9 0.95 0.001, Euler,
 # pyramidal cone, Newton), then the stiffest contact its refsafe allows
 # (timeconst = 2 dt, critically damped; timeconst = dt with refsafe off blows
 # up), alone and with a harder impedance, the elliptic cone, impratio, RK4.
-stiffest() { local dt=$1; shift; mujoco "solref 2dt 1$label" "$dt" --solref "$(awk -v d="$dt" 'BEGIN { print 2 * d }') 1" "$@"; }
-for dt in 2e-3 1e-3 5e-4 2.5e-4; do mujoco "defaults" $dt; done
-label=""
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt; done
-label=", solimp 0.99 0.99, elliptic"
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt --solimp "0.99 0.99 0.001 0.5 2" --cone elliptic; done
-label=", elliptic, impratio 10"
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest $dt --cone elliptic --impratio 10; done
-label=", RK4"
-for dt in 1e-3 5e-4 3.5e-4 2.5e-4; do stiffest $dt --integrator RK4; done
+stiffest() {  # LABEL DT [OPTIONS]
+  add mujoco "solref 2dt 1$1" "$2" "--solref=$(awk -v d="$2" 'BEGIN { print 2 * d }') 1${3:+;$3}"
+}
+for dt in 2e-3 1e-3 5e-4 2.5e-4; do add mujoco "defaults" $dt ""; done
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest "" $dt; done
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do
+  stiffest ", solimp 0.99 0.99, elliptic" $dt "--solimp=0.99 0.99 0.001 0.5 2;--cone=elliptic"
+done
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4 1.25e-4; do stiffest ", elliptic, impratio 10" $dt "--cone=elliptic;--impratio=10"; done
+for dt in 1e-3 5e-4 3.5e-4 2.5e-4; do stiffest ", RK4" $dt "--integrator=RK4"; done
+
+# run INDEX RECORD: runs case INDEX (freestand writes the record only when
+# RECORD is set: its timing runs write nothing); prints its loop seconds.
+run() {
+  local engine label dt settings s nout
+  IFS='|' read -r engine label dt settings <<< "${cases[$1]}"
+  IFS=';' read -ra s <<< "$settings"
+  if [ "$engine" = freestand ]; then
+    nout=0
+    [ -z "$2" ] || nout=$(awk -v dt="$dt" -v s="$sample" 'BEGIN { n = int(s / dt + 0.5); print n < 1 ? 1 : n }')
+    (cd "$root/inputs/convex" &&
+     "$build/freestand-lmp" -in free_rocking.in -var dt "$dt" -var tend "$tend" -var k "${s[0]}" \
+       -var e "${s[1]}" -var zt normal -var scene "${s[2]}" -var nout "$nout" -var out "$work/record" \
+       -log "$work/log" -screen /dev/null > /dev/null)
+    grep -a '^Loop time' "$work/log" | awk '{ print $4 }'
+  else
+    "$build/mujoco_free_rocking" --dt "$dt" --tend "$tend" --sample "$sample" --out "$work/record" \
+      "${s[@]}" | awk '{ print $2 }'
+  fi
+}
+
+# Accuracy: one recorded run per case.
+errors=()
+for i in "${!cases[@]}"; do
+  run "$i" record > /dev/null
+  errors[i]=$("$build/housner_error" "$work/record")
+done
+# Cost: REPEAT rounds over all cases (a burst of load on the shared machine
+# then hits one round, not every run of a case); the fastest run counts.
+loop=() whole=()
+for _ in $(seq "$repeat"); do
+  for i in "${!cases[@]}"; do
+    t0=$(date +%s.%N)
+    t=$(run "$i" "")
+    w=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
+    loop[i]=$(awk -v a="$t" -v b="${loop[i]:-}" 'BEGIN { print (b == "" || a + 0 < b + 0) ? a : b }')
+    whole[i]=$(awk -v a="$w" -v b="${whole[i]:-}" 'BEGIN { print (b == "" || a + 0 < b + 0) ? a : b }')
+  done
+done
+for i in "${!cases[@]}"; do
+  IFS='|' read -r engine label dt _ <<< "${cases[$i]}"
+  echo "$engine|$label|$dt|${loop[i]}|${whole[i]}|${errors[i]}"
+done > "$results"
 
 awk -F'|' -v tend="$tend" -v repeat="$repeat" '
   {
