@@ -2,14 +2,15 @@
 #define FREESTAND_TESTS_VALIDATION_SUPPORT_H
 
 // Shared machinery of the validation tests (docs/validation.md): clump
-// generation, running the inputs/validation scripts in-process, reading
-// their fix print output, and the signal analysis (impacts and amplitudes of
-// free rocking, threshold detection of uplift and slip).
+// generation and running the inputs/validation scripts in-process; the
+// analysis of their fix print output is in signal_analysis.h.
 
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "signal_analysis.h"
 
 namespace freestand::validation {
 
@@ -51,12 +52,6 @@ std::string source_path(const std::string& relative);
 using Variables = std::vector<std::pair<std::string, std::string>>;
 void run_input(const std::string& script, const Variables& variables);
 
-// The numeric rows of a fix print file (comment lines skipped); every row
-// must have at least `columns` values.
-std::vector<std::vector<double>> read_rows(const std::filesystem::path& file, std::size_t columns);
-
-// One column of those rows.
-std::vector<double> column(const std::vector<std::vector<double>>& rows, std::size_t index);
 
 // x with 17 significant digits, for input-script variables.
 std::string num(double x);
@@ -64,27 +59,6 @@ std::string num(double x);
 // Wall-clock seconds since an arbitrary origin.
 double wall_seconds();
 
-// Free rocking, as Housner describes it: impacts are the zero crossings of
-// the rocking angle, amplitude n is the largest |theta| between impacts n
-// and n+1 (refined by a parabola through the largest sample and its
-// neighbours). A crossing counts only once |theta| then exceeds
-// `hysteresis` with the new sign, so contact chatter near theta = 0 cannot
-// split a half-cycle.
-struct RockingCycles {
-  std::vector<double> impacts;     // s
-  std::vector<double> amplitudes;  // rad, amplitudes[n] between impacts[n] and impacts[n+1]
-};
-RockingCycles rocking_cycles(const std::vector<double>& t, const std::vector<double>& theta,
-                             double hysteresis);
-
-// First sample k >= first at which the finite-difference rate of `value` over
-// `window` samples, (value[k] - value[k - window]) / (t[k] - t[k - window]),
-// times `direction` (+1 or -1) exceeds `threshold`; -1 if none.
-long first_rate_above(const std::vector<double>& t, const std::vector<double>& value,
-                      std::size_t window, double direction, double threshold, std::size_t first);
-
-// Linear interpolation of (x, y) at xi (x increasing; clamped at the ends).
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xi);
 
 }  // namespace freestand::validation
 
