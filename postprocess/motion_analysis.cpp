@@ -70,9 +70,21 @@ void validate(const BodyMotion& motion, const AnalysisParameters& p) {
 }
 
 // Peak of |theta| near sample `best`: vertex of a parabola fitted to the
-// five samples around it when the vertex lies among them, else the sample.
+// two finite samples on each side of it and itself (lost samples are skipped,
+// up to kPeakReach steps away) when the vertex lies among them, else the sample.
 double refined_peak(const std::vector<double>& t, const std::vector<double>& theta, std::size_t best) {
-  const IndexRange range{best >= 2 ? best - 2 : 0, std::min(best + 3, t.size())};
+  constexpr std::size_t kPeakReach = 8;  // samples; beyond that the parabola no longer fits a peak
+  auto reach = [&](int direction) {
+    std::size_t i = best;
+    for (int found = 0; found < 2; ) {
+      if ((direction < 0 && i == 0) || (direction > 0 && i + 1 == t.size()) || std::max(i, best) - std::min(i, best) >= kPeakReach)
+        break;
+      i += direction;
+      if (std::isfinite(theta[i])) ++found;
+    }
+    return i;
+  };
+  const IndexRange range{reach(-1), reach(+1) + 1};
   const signal::LocalFit fit = local_fit(t, theta, range, t[best], 2, 0.0);
   if (fit.valid && fit.curvature * theta[best] < 0) {
     const double shift = -fit.slope / fit.curvature;
@@ -116,12 +128,6 @@ std::vector<double> hysteresis_crossings(const std::vector<double>& t, const std
   return crossings;
 }
 
-// Angular velocity at an impact from one side: quadratic fit to [lo, hi].
-signal::LocalFit impact_side_fit(const std::vector<double>& t, const std::vector<double>& theta,
-                                 double impact, double lo, double hi, double noise) {
-  return local_fit(t, theta, index_range(t, lo, hi), impact, 2, noise);
-}
-
 double median(std::vector<double> values) {
   values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
                values.end());
@@ -134,15 +140,22 @@ double median(std::vector<double> values) {
 
 Impact impact_at(const std::vector<double>& t, const std::vector<double>& theta,
                  const std::vector<double>& crossings, std::size_t k, const AnalysisParameters& p) {
-  const double time = crossings[k];
+  const double crossing = crossings[k];
   const double before = k > 0 ? crossings[k - 1] : t.front();
   const double after = k + 1 < crossings.size() ? crossings[k + 1] : t.back();
   // The fit windows stay inside the neighbouring half-cycles (half of each at most).
-  const double window = std::min({p.impact_window, 0.5 * (time - before), 0.5 * (after - time)});
-  const auto fit_before = impact_side_fit(t, theta, time, time - window, time, p.angle_noise);
-  const auto fit_after = impact_side_fit(t, theta, time, std::nextafter(time, after), time + window, p.angle_noise);
+  const double window = std::min({p.impact_window, 0.5 * (crossing - before), 0.5 * (after - crossing)});
+  const IndexRange left = index_range(t, crossing - window, crossing);
+  const IndexRange right = index_range(t, std::nextafter(crossing, after), crossing + window);
+  // The angular velocity jumps at the impact, so linear interpolation of the
+  // crossing errs by up to (1 - r) dt / 4: the impact is where the one-sided
+  // fits reach zero (one Newton step from the crossing, mean of both sides).
+  auto fit_at = [&](IndexRange range, double time) { return local_fit(t, theta, range, time, 2, p.angle_noise); };
+  auto root_shift = [](const signal::LocalFit& fit) { return fit.valid ? -fit.value / fit.slope : kNaN; };
+  const double shift = 0.5 * (root_shift(fit_at(left, crossing)) + root_shift(fit_at(right, crossing)));
   Impact impact;
-  impact.time = time;
+  impact.time = std::isfinite(shift) ? crossing + shift : crossing;
+  const signal::LocalFit fit_before = fit_at(left, impact.time), fit_after = fit_at(right, impact.time);
   impact.omega_before = fit_before.slope;
   impact.omega_after = fit_after.slope;
   impact.omega_before_sd = fit_before.slope_sd;
@@ -150,8 +163,8 @@ Impact impact_at(const std::vector<double>& t, const std::vector<double>& theta,
   impact.ratio = std::fabs(fit_after.slope / fit_before.slope);
   impact.ratio_sd = impact.ratio * std::hypot(fit_after.slope_sd / fit_after.slope,
                                               fit_before.slope_sd / fit_before.slope);
-  impact.amplitude_before = half_cycle_amplitude(t, theta, before, time);
-  impact.amplitude_after = half_cycle_amplitude(t, theta, time, after);
+  impact.amplitude_before = half_cycle_amplitude(t, theta, before, crossing);
+  impact.amplitude_after = half_cycle_amplitude(t, theta, crossing, after);
   return impact;
 }
 
@@ -429,8 +442,7 @@ RockingImpacts rocking_impacts(const BodyMotion& motion, int axis, const BodyGeo
   for (std::size_t k = 0; k < crossings.size(); ++k) {
     out.impacts.push_back(impact_at(t, theta, crossings, k, p));
     ratios.push_back(out.impacts.back().ratio);
-    if (k + 1 < crossings.size())
-      out.half_cycles.push_back({crossings[k], crossings[k + 1], out.impacts.back().amplitude_after});
+    if (k > 0) out.half_cycles.push_back({out.impacts[k - 1].time, out.impacts[k].time, out.impacts[k - 1].amplitude_after});
   }
   out.median_ratio = median(ratios);
   return out;

@@ -103,7 +103,7 @@ struct ModeSegment {
 
 // One crossing of the rocking angle through zero (an impact of the base).
 struct Impact {
-  double time = kNaN;              // s, linear interpolation of the zero crossing
+  double time = kNaN;              // s, where the one-sided fits reach zero (mean of both)
   double omega_before = kNaN;      // rad/s, quadratic fit of the angle just before, at `time`
   double omega_after = kNaN;       // rad/s, the same just after
   double omega_before_sd = kNaN;   // rad/s, standard deviation of omega_before from the angle noise
