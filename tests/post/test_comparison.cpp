@@ -122,8 +122,9 @@ TEST(Comparison, NormalisedRmsErrorOfNoise) {
 }
 
 // Dominant frequency of a tone between bins: the log-parabola through a
-// Hann-windowed peak is biased by at most ~0.02 bin (Grandke 1983; measured
-// 0.014 here): 0.05 bin. Centroid of a pure tone: the leakage is symmetric
+// Hann-windowed peak is biased by a few hundredths of a bin (Grandke 1983;
+// measured at most 0.016 bin over 20 fractional positions): 0.05 bin.
+// Centroid of a pure tone: the leakage is symmetric
 // about the tone except for its image at -f, negligible 20 bins away: 0.05 bin.
 TEST(Comparison, SpectrumOfTonesBetweenBins) {
   const double step = 0.005, duration = 20;  // bin width 1 / 20 Hz
