@@ -78,6 +78,7 @@ void fit_gain(const std::vector<double>& recorded, const std::vector<double>& sh
       sxx += (shifted[i] - ms) * (shifted[i] - ms);
       sxy += (shifted[i] - ms) * (recorded[i] - mr);
     }
+  if (!(sxx > 0)) return;  // constant simulation: no gain
   out.gain = sxy / sxx;
   out.gain_sd = noise / std::sqrt(sxx);
   out.bias = mr - out.gain * ms;
@@ -101,6 +102,11 @@ Aligned align(const std::vector<double>& recorded_time, const std::vector<double
   if (recorded_time.size() != recorded.size() || simulated_time.size() != simulated.size())
     throw InputError(fmt::format("comparison: recording has {} times and {} values, simulation {} and {}",
                                  recorded_time.size(), recorded.size(), simulated_time.size(), simulated.size()));
+  for (const auto* t : {&recorded_time, &simulated_time})
+    for (std::size_t i = 1; i < t->size(); ++i)
+      if (!((*t)[i] > (*t)[i - 1]))
+        throw InputError(fmt::format("comparison: {} time not strictly increasing at sample {}",
+                                     t == &recorded_time ? "recording" : "simulation", i));
   Aligned a;
   for (std::size_t i = 0; i < recorded_time.size(); ++i) {
     const double s = signal::interpolate(simulated_time, simulated, recorded_time[i]);
@@ -114,6 +120,7 @@ Aligned align(const std::vector<double>& recorded_time, const std::vector<double
 
 Spectrum spectrum(const std::vector<double>& t, const std::vector<double>& y) {
   Spectrum out;
+  if (t.size() < 8 || t.size() != y.size()) return out;
   const double dt = signal::median_step(t);
   const std::size_t n = static_cast<std::size_t>(std::floor((t.back() - t.front()) / dt)) + 1;
   std::vector<double> u = signal::resample_uniform(t, y, t.front(), dt, n);
@@ -163,7 +170,7 @@ OffsetGain offset_and_gain(const Aligned& a, const std::vector<double>& simulate
     shift = parabola_vertex(correlation[best + max_lag - 1], correlation[best + max_lag],
                             correlation[best + max_lag + 1]);
   out.offset = (best + shift) * pair.dt;
-  out.correlation = correlation[best + max_lag];
+  out.correlation = correlation[best + max_lag] >= -1 ? correlation[best + max_lag] : kNaN;
   std::vector<double> shifted(a.time.size());
   for (std::size_t i = 0; i < a.time.size(); ++i)
     shifted[i] = signal::interpolate(simulated_time, simulated, a.time[i] - out.offset);
@@ -209,6 +216,8 @@ ChannelComparison compare_channel(const std::vector<double>& recorded_time, cons
 BodyComparison compare_body(const analysis::BodyMotion& recorded, const analysis::BodyMotion& simulated,
                             const analysis::BodyGeometry& geometry, const analysis::AnalysisParameters& parameters,
                             ComparisonParameters comparison) {
+  analysis::check_motion(recorded, parameters);
+  analysis::check_motion(simulated, parameters);
   BodyComparison out;
   for (int c = 0; c < analysis::kChannelCount; ++c) {
     if (recorded.channels[c].empty() || simulated.channels[c].empty()) continue;

@@ -44,7 +44,9 @@ double rocking_slide_rate(double theta, double theta_rate, double b) {
   return std::isfinite(b) ? b * std::fabs(std::sin(theta)) * theta_rate : 0.0;
 }
 
-void validate(const BodyMotion& motion, const AnalysisParameters& p) {
+}  // namespace
+
+void check_motion(const BodyMotion& motion, const AnalysisParameters& p) {
   const std::size_t n = motion.time.size();
   if (n < 3) throw InputError(fmt::format("motion analysis: {} time samples, need >= 3", n));
   for (std::size_t i = 1; i < n; ++i)
@@ -68,6 +70,8 @@ void validate(const BodyMotion& motion, const AnalysisParameters& p) {
   if (!(p.min_segment >= 0) || !(p.overturn_margin >= 0) || p.residual_fraction > 1)
     throw InputError("motion analysis: min_segment and overturn_margin must be >= 0, residual_fraction <= 1");
 }
+
+namespace {
 
 // Peak of |theta| near sample `best`: vertex of a parabola fitted to the
 // two finite samples on each side of it and itself (lost samples are skipped,
@@ -449,7 +453,7 @@ RockingImpacts rocking_impacts(const BodyMotion& motion, int axis, const BodyGeo
 }
 
 MotionSummary analyse_motion(const BodyMotion& motion, const BodyGeometry& geometry, const AnalysisParameters& p) {
-  validate(motion, p);
+  check_motion(motion, p);
   MotionSummary summary;
   summary.peaks = channel_peaks(motion);
   summary.residual = residuals(motion, p);

@@ -168,8 +168,12 @@ std::vector<SlipEvent> slip_events(const BodyMotion& motion, const ModeEvidence&
 std::vector<Separation> separations(const BodyMotion& motion, const ModeEvidence& evidence,
                                     const AnalysisParameters& parameters);
 
-// Everything above. Throws InputError when channel lengths differ from time's
-// or a parameter is out of range.
+// Throws InputError when channel lengths differ from time's, time is not
+// strictly increasing or a parameter is out of range. The functions above
+// assume a checked motion.
+void check_motion(const BodyMotion& motion, const AnalysisParameters& parameters);
+
+// Everything above, after check_motion().
 MotionSummary analyse_motion(const BodyMotion& motion, const BodyGeometry& geometry,
                              const AnalysisParameters& parameters = {});
 

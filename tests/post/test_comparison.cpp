@@ -165,8 +165,9 @@ TEST(Comparison, ImpactDecayOfTwoRockingRecords) {
   EXPECT_TRUE(c.decay[1].recorded_ratios.empty());
 }
 
-TEST(Comparison, MismatchedLengthsAreAnInputError) {
+TEST(Comparison, BadSeriesAreAnInputError) {
   EXPECT_THROW(compare_channel({0, 1, 2}, {0, 1}, {0, 1, 2}, {0, 1, 2}), InputError);
+  EXPECT_THROW(compare_channel({0, 1, 2}, {0, 1, 2}, {0, 2, 1}, {0, 1, 2}), InputError);
 }
 
 }  // namespace
