@@ -1,0 +1,149 @@
+#include "signal_tools.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace freestand::signal {
+
+IndexRange index_range(const std::vector<double>& t, double lo, double hi) {
+  const auto first = std::lower_bound(t.begin(), t.end(), lo);
+  const auto last = std::upper_bound(first, t.end(), hi);
+  return {static_cast<std::size_t>(first - t.begin()), static_cast<std::size_t>(last - t.begin())};
+}
+
+LocalFit local_fit(const std::vector<double>& t, const std::vector<double>& y, IndexRange range,
+                   double t_eval, int degree, double noise) {
+  // Powers of u = (t - t_eval) / scale: scaling keeps the normal equations
+  // well conditioned whatever the window length.
+  double scale = 0;
+  for (std::size_t i = range.first; i < range.last; ++i)
+    if (std::isfinite(y[i])) scale = std::max(scale, std::fabs(t[i] - t_eval));
+  const int terms = degree + 1;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  LocalFit fit;
+  for (std::size_t i = range.first; i < range.last; ++i) {
+    if (!std::isfinite(y[i])) continue;
+    const double u = (t[i] - t_eval) / scale;
+    const Eigen::Vector3d row(1.0, u, u * u);
+    normal.topLeftCorner(terms, terms) += row.head(terms) * row.head(terms).transpose();
+    rhs.head(terms) += row.head(terms) * y[i];
+    ++fit.samples;
+  }
+  if (fit.samples < degree + 2 || scale == 0) return fit;
+  const Eigen::MatrixXd inverse = normal.topLeftCorner(terms, terms).inverse();
+  if (!inverse.allFinite()) return fit;  // samples at fewer than degree + 1 distinct times
+  const Eigen::VectorXd beta = inverse * rhs.head(terms);
+  fit.valid = true;
+  fit.value = beta(0);
+  fit.slope = beta(1) / scale;
+  fit.slope_sd = noise * std::sqrt(inverse(1, 1)) / scale;
+  if (degree == 2) fit.curvature = 2 * beta(2) / (scale * scale);
+  return fit;
+}
+
+Rates local_rates(const std::vector<double>& t, const std::vector<double>& y, double half_window,
+                  double noise) {
+  Rates rates{std::vector<double>(t.size(), kNaN), std::vector<double>(t.size(), kNaN)};
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(y[i])) continue;
+    const LocalFit fit = local_fit(t, y, index_range(t, t[i] - half_window, t[i] + half_window),
+                                   t[i], 1, noise);
+    if (!fit.valid) continue;
+    rates.value[i] = fit.slope;
+    rates.sd[i] = fit.slope_sd;
+  }
+  return rates;
+}
+
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xi) {
+  if (x.empty() || !(xi >= x.front() && xi <= x.back())) return kNaN;
+  const std::size_t hi = std::lower_bound(x.begin(), x.end(), xi) - x.begin();
+  if (x[hi] == xi) return y[hi];
+  const double f = (xi - x[hi - 1]) / (x[hi] - x[hi - 1]);
+  return y[hi - 1] + f * (y[hi] - y[hi - 1]);  // NaN when either neighbour is lost
+}
+
+std::vector<double> resample_uniform(const std::vector<double>& t, const std::vector<double>& y,
+                                     double t0, double dt, std::size_t n) {
+  std::vector<double> valid_t, valid_y;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (std::isfinite(y[i])) {
+      valid_t.push_back(t[i]);
+      valid_y.push_back(y[i]);
+    }
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) out[k] = interpolate(valid_t, valid_y, t0 + k * dt);
+  return out;
+}
+
+double median_step(const std::vector<double>& t) {
+  if (t.size() < 2) return kNaN;
+  std::vector<double> steps(t.size() - 1);
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  return steps[steps.size() / 2];
+}
+
+double finite_mean(const std::vector<double>& y, IndexRange range) {
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = range.first; i < range.last; ++i)
+    if (std::isfinite(y[i])) {
+      sum += y[i];
+      ++count;
+    }
+  return count ? sum / count : kNaN;
+}
+
+std::vector<Run> label_runs(const std::vector<int>& labels) {
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (runs.empty() || runs.back().label != labels[i])
+      runs.push_back({labels[i], i, i});
+    else
+      runs.back().last = i;
+  }
+  return runs;
+}
+
+double run_duration(const std::vector<double>& t, const std::vector<Run>& runs, std::size_t i) {
+  const double end = i + 1 < runs.size() ? t[runs[i + 1].first] : t.back();
+  return end - t[runs[i].first];
+}
+
+namespace {
+
+// Joins neighbouring runs that carry the same label.
+std::vector<Run> join_equal(const std::vector<Run>& runs) {
+  std::vector<Run> joined;
+  for (const Run& run : runs) {
+    if (!joined.empty() && joined.back().label == run.label)
+      joined.back().last = run.last;
+    else
+      joined.push_back(run);
+  }
+  return joined;
+}
+
+}  // namespace
+
+std::vector<Run> merge_short_runs(std::vector<Run> runs, const std::vector<double>& t,
+                                  double min_duration) {
+  while (runs.size() > 1) {
+    std::size_t shortest = 0;
+    for (std::size_t i = 1; i < runs.size(); ++i)
+      if (run_duration(t, runs, i) < run_duration(t, runs, shortest)) shortest = i;
+    if (run_duration(t, runs, shortest) >= min_duration) break;
+    const bool has_left = shortest > 0, has_right = shortest + 1 < runs.size();
+    const bool take_left =
+        has_left && (!has_right || run_duration(t, runs, shortest - 1) >= run_duration(t, runs, shortest + 1));
+    runs[shortest].label = runs[take_left ? shortest - 1 : shortest + 1].label;
+    runs = join_equal(runs);
+  }
+  return runs;
+}
+
+}  // namespace freestand::signal

@@ -1,0 +1,78 @@
+#ifndef FREESTAND_POST_SIGNAL_TOOLS_H
+#define FREESTAND_POST_SIGNAL_TOOLS_H
+
+// Building blocks of motion_analysis and comparison (docs/postprocessing.md):
+// local least-squares fits that tolerate lost (NaN) samples and uneven
+// sampling, interpolation, uniform resampling, and labelled runs of samples
+// with chatter suppression. Plain arrays in, plain numbers out; no I/O.
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace freestand::signal {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Indices [first, last) of the samples with lo <= t <= hi (t ascending).
+struct IndexRange {
+  std::size_t first = 0, last = 0;
+};
+IndexRange index_range(const std::vector<double>& t, double lo, double hi);
+
+// Polynomial of degree 1 or 2 fitted by least squares to the finite samples
+// of y in `range`, expanded about t_eval.
+struct LocalFit {
+  bool valid = false;     // at least degree + 2 finite samples (one to spare for the noise)
+  double value = kNaN;    // fitted y(t_eval), units of y
+  double slope = kNaN;    // fitted dy/dt at t_eval, units of y per s
+  double slope_sd = kNaN; // standard deviation of `slope` for white noise of sd `noise` on y
+  double curvature = kNaN; // fitted d2y/dt2 (degree 2 only), units of y per s^2
+  int samples = 0;        // finite samples used
+};
+LocalFit local_fit(const std::vector<double>& t, const std::vector<double>& y, IndexRange range,
+                   double t_eval, int degree, double noise);
+
+// dy/dt at every sample: straight-line fit over the finite samples within
+// +-half_window s (a centred, noise-averaging difference); NaN where the
+// sample itself is lost or the window holds fewer than 3 finite samples.
+struct Rates {
+  std::vector<double> value;  // units of y per s
+  std::vector<double> sd;     // standard deviation for white noise of sd `noise` on y
+};
+Rates local_rates(const std::vector<double>& t, const std::vector<double>& y, double half_window,
+                  double noise);
+
+// y at xi by linear interpolation (x ascending); NaN outside [x.front(), x.back()]
+// or when a bracketing sample is NaN.
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xi);
+
+// y at t0 + k dt, k = 0..n-1, with lost samples bridged linearly between the
+// finite neighbours (spectra and correlations need a gap-free uniform series);
+// NaN before the first and after the last finite sample.
+std::vector<double> resample_uniform(const std::vector<double>& t, const std::vector<double>& y,
+                                     double t0, double dt, std::size_t n);
+
+// Median spacing of t (s): the sampling step of a recording with occasional jitter.
+double median_step(const std::vector<double>& t);
+
+// Mean of the finite values of y in `range`; NaN when none.
+double finite_mean(const std::vector<double>& y, IndexRange range);
+
+// A run of equally labelled samples [first, last] (inclusive). It lasts from
+// t[first] to the start of the next run (the last run: to t.back()).
+struct Run {
+  int label = 0;
+  std::size_t first = 0, last = 0;
+};
+std::vector<Run> label_runs(const std::vector<int>& labels);
+double run_duration(const std::vector<double>& t, const std::vector<Run>& runs, std::size_t i);
+
+// Chatter suppression: while a run shorter than min_duration (s) remains, the
+// shortest takes the label of its longer neighbour and equal neighbours join.
+std::vector<Run> merge_short_runs(std::vector<Run> runs, const std::vector<double>& t,
+                                  double min_duration);
+
+}  // namespace freestand::signal
+
+#endif
