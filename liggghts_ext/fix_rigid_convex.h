@@ -129,6 +129,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   FixShakeTable *table_ = nullptr;                  // resolved in init()
   double plane_z_ = 0.0;                            // table top at rest (m)
   bool auto_time_step_ = false;                     // keyword timestep auto: set dt in init()
+  static constexpr double kAutoTimeStepFraction = 0.5;  // timestep auto: dt / critical step
   int atom_type_ = 1;                               // LIGGGHTS atom type of the bodies
   tagint first_tag_ = 0;                            // tag of body 0; body k has first_tag_ + k
   int table_contacts_ = 0;                          // node contacts with the table, this rank

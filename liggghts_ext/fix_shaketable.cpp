@@ -95,17 +95,20 @@ double FixShakeTable::compute_vector(int i) {
 
 void FixShakeTable::write_restart(FILE *fp) {
   if (comm->me != 0) return;
-  // Motion time, not the start time: LIGGGHTS 3.8 does not keep the
-  // simulation time in restart files (it restarts from 0).
-  const double list[1] = {motion_time()};
+  // The anchor and the steps since it, not the simulation time: LIGGGHTS 3.8
+  // does not keep that in restart files (it restarts from 0), and the
+  // restarted run then computes the motion time with the same arithmetic as
+  // the uninterrupted one (bit for bit, not just to round-off).
+  const double list[2] = {anchor_time_, static_cast<double>(update->ntimestep - anchor_step_)};
   const int size = sizeof(list);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 1, fp);
+  fwrite(list, sizeof(double), 2, fp);
 }
 
 void FixShakeTable::restart(char *buf) {
   // A restarted run keeps playing the record where the saved run was.
-  anchor_time_ = reinterpret_cast<double *>(buf)[0];
-  anchor_step_ = update->ntimestep;
+  const double *list = reinterpret_cast<double *>(buf);
+  anchor_time_ = list[0];
+  anchor_step_ = update->ntimestep - static_cast<bigint>(list[1]);
   dt_ = update->dt;
 }

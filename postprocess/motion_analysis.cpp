@@ -445,7 +445,11 @@ RockingImpacts rocking_impacts(const BodyMotion& motion, int axis, const BodyGeo
   std::vector<double> ratios;
   for (std::size_t k = 0; k < crossings.size(); ++k) {
     out.impacts.push_back(impact_at(t, theta, crossings, k, p));
-    ratios.push_back(out.impacts.back().ratio);
+    // The median counts impacts that arrive with a measurable angular
+    // velocity: a crossing that merely grazes zero (a driven body barely
+    // rocking) has omega_before ~ 0 and an arbitrary ratio.
+    const Impact& i = out.impacts.back();
+    if (std::fabs(i.omega_before) > p.threshold_sigmas * i.omega_before_sd) ratios.push_back(i.ratio);
     if (k > 0) out.half_cycles.push_back({out.impacts[k - 1].time, out.impacts[k].time, out.impacts[k - 1].amplitude_after});
   }
   out.median_ratio = median(ratios);

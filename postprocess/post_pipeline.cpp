@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
+#include "events_file.h"
 #include "results.h"
+#include "results_analysis.h"
 #include "vtk_series.h"
 
 namespace freestand {
@@ -57,19 +60,41 @@ SeriesHistory history_of(const Results& results) {
   return h;
 }
 
-void print_summary(const Results& results) {
+// Seconds spent in each mode, largest first: "rock 12.3 s, rest 40.1 s".
+std::string mode_times(const analysis::MotionSummary& s) {
+  std::map<std::string, double> seconds;
+  for (const analysis::ModeSegment& m : s.modes) seconds[analysis::mode_name(m.mode)] += m.end - m.start;
+  std::vector<std::pair<double, std::string>> sorted;
+  for (const auto& [mode, t] : seconds) sorted.emplace_back(-t, mode);
+  std::sort(sorted.begin(), sorted.end());
+  std::string out;
+  for (const auto& [t, mode] : sorted) out += fmt::format("{}{} {:.1f} s", out.empty() ? "" : ", ", mode, -t);
+  return out;
+}
+
+void print_summary(const Results& results, const std::vector<AnalysedBody>& bodies) {
   fmt::print("  {:<12} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "peak |.|", "rock_x", "rock_y", "twist",
              "slide_x", "slide_y", "uplift");
-  for (const BodyResults& b : results.bodies) {
+  for (const AnalysedBody& b : bodies) {
     fmt::print("  {:<12}", b.name);
-    for (const std::string& channel : channel_names()) {
-      double peak = 0;
-      for (double v : b.at(channel)) peak = std::max(peak, std::fabs(v));
-      fmt::print(" {:>10.4g}", peak);
-    }
+    for (const analysis::Peak& p : b.summary.peaks) fmt::print(" {:>10.4g}", p.magnitude());
+    fmt::print("\n  {:<12}", "  residual");
+    for (double r : b.summary.residual.mean) fmt::print(" {:>10.3g}", r);
     fmt::print("\n");
   }
-  fmt::print("  (rad, m; at {} s)\n", results.time.back());
+  fmt::print("  (rad, m; {:.2f} s simulated; residual = mean over the last 10 %)\n", results.time.back());
+  for (const AnalysedBody& b : bodies) {
+    const analysis::MotionSummary& s = b.summary;
+    fmt::print("  {}: {}\n", b.name, mode_times(s));
+    if (s.overturn.overturned) fmt::print("    OVERTURNED at {:.2f} s ({})\n", s.overturn.time, s.overturn.criterion);
+    for (int axis = 0; axis < 2; ++axis) {
+      const analysis::RockingImpacts& r = s.impacts[axis];
+      if (r.impacts.empty()) continue;
+      fmt::print("    {} impacts in {}: median omega ratio {:.3f} (Housner {:.3f})\n", r.impacts.size(),
+                 axis == 0 ? "rock_x" : "rock_y", r.median_ratio, r.housner_ratio);
+    }
+    if (!s.slips.empty()) fmt::print("    {} slip events\n", s.slips.size());
+  }
 }
 
 }  // namespace
@@ -77,7 +102,10 @@ void print_summary(const Results& results) {
 void postprocess(const std::string& results_path, const PostOptions& options) {
   const Results results = read_results(results_path);
   const fs::path dir = fs::path(results_path).parent_path();
-  print_summary(results);
+  const std::vector<AnalysedBody> bodies = analyse_results(results);
+  write_events(results_path, bodies);
+  print_summary(results, bodies);
+  fmt::print("  events (impacts, slips, modes, peaks): {} /events\n", results_path);
   if (options.csv) {
     const std::string stem = (dir / "channels").string();
     write_recording(stem, results_as_recording(results));

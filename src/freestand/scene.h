@@ -56,7 +56,7 @@ struct Scene {
 struct SceneDefaults {
   double density = 2700.0;                 // kg/m^3 (marble), when neither mass nor density is given
   double stiffness_per_area = 1e10;        // N/m^3 (stone on stone: E ~ 5e10 Pa over ~5 m)
-  double restitution = 0.1;                // flat face-on impact
+  double restitution = 0.05;               // flat face-on impact (docs/benchmarks.md: time to accuracy)
   double mu = 0.6;                         // friction when none is stated
   std::string law = "linear";              // normal law when none is stated: "linear" or "hertz"
   NodeOptions nodes;                       // contact nodes when a body states none
