@@ -1,31 +1,22 @@
 #!/usr/bin/env bash
 # Fresh machine to results: install Debian packages, build, and run the
-# flagship example: a 3 m marble block rocking on a shake table under the
-# unscaled 1999 Duzce Bolu record (inputs/shake_table/duzce_rocking.in).
+# flagship example, the seed paper's dual-body case: a slender marble tower on
+# a stocky marble pedestal on a shake table playing the unscaled 1999 Duzce
+# Bolu record (inputs/scenarios/statue_pedestal_duzce.json). Produces
+# results.h5, the ParaView series and report.html in out/statue_pedestal/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh"
 
-out="$root/out"
+out="$root/out/statue_pedestal"
 mkdir -p "$out"
-cd "$root/inputs/shake_table"
-echo "demo: running duzce_rocking.in (56 s of shaking; about 15 s of wall time)"
-"$root/build/freestand-lmp" -in duzce_rocking.in -var out "$out/duzce_rocking.h5" \
-  -log "$out/duzce_rocking.log" -screen "$out/duzce_rocking.screen"
-
-/usr/bin/python3 - "$out/duzce_rocking.h5" <<'PY'
-import sys, h5py, numpy as np
-with h5py.File(sys.argv[1], "r") as f:
-    t = f["/time"][:]
-    rock = f["/bodies/block/rock_x"][:]
-    slide = f["/bodies/block/slide_x"][:]
-    ax = f["/table/ax"][:]
-    i = int(np.argmax(np.abs(rock)))
-    print(f"demo: peak table acceleration {np.abs(ax).max() / 9.81:.2f} g")
-    print(f"demo: peak rocking {rock[i]:+.4f} rad at t = {t[i]:.2f} s "
-          f"(slenderness 0.322 rad); residual tilt {rock[-1]:+.2e} rad")
-    print(f"demo: peak sliding {np.abs(slide).max() * 1000:.1f} mm")
-PY
-echo "demo: results in $out/duzce_rocking.h5 (HDF5: /time, /table/*, /bodies/block/*),"
-echo "      log in $out/duzce_rocking.log; channels are described in docs/fix_rockslide_hdf5.md"
+echo "demo: tower on pedestal under Duzce Bolu 090 (56 s of shaking)"
+"$root/build/freestand" run "$root/inputs/scenarios/statue_pedestal_duzce.json" -o "$out"
+"$root/build/freestand" report "$out/results.h5" -o "$out/report.html"
+echo
+echo "demo: results      $out/results.h5   (docs/results-format.md; h5py, HDFView)"
+echo "demo: ParaView     $out/paraview/bodies.pvd and table.pvd   (docs/paraview.md)"
+echo "demo: report       $out/report.html   (open in a browser; self-contained)"
+echo "demo: channels     $out/channels.csv   (recording format)"
+echo "demo: input script $out/run.in   (rerun or edit: cd $out && $root/build/freestand-lmp -in run.in)"
