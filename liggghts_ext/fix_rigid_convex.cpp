@@ -420,8 +420,10 @@ void FixRigidConvex::initial_integrate(int) {
 void FixRigidConvex::post_force(int) {
   table_contacts_ = 0;
   table_elastic_ = 0.0;
-  for (int i = 0; i < atom->nlocal; ++i)
+  for (int i = 0; i < atom->nlocal; ++i) {
+    state_[i].table_force = state_[i].table_torque = Vector3d::Zero();
     if (state_[i].body >= 0 && templates_[state_[i].body].table_law) table_contact(i);
+  }
 }
 
 // Contact nodes of body i against the table plane z = plane_z + d_z(t),
@@ -479,10 +481,60 @@ void FixRigidConvex::table_contact(int i) {
       }
     }
   }
+  s.table_force = force;
+  s.table_torque = torque;
   for (int k = 0; k < 3; ++k) {
     atom->f[i][k] += force[k];
     atom->torque[i][k] += torque[k];
   }
+}
+
+void FixRigidConvex::clear_pair_resultants() {
+  for (int i = 0; i < atom->nlocal; ++i) state_[i].pair_force = state_[i].pair_torque = Vector3d::Zero();
+}
+
+void FixRigidConvex::add_pair_resultant(int i, const Vector3d &force, const Vector3d &torque) {
+  state_[i].pair_force += force;
+  state_[i].pair_torque += torque;
+}
+
+namespace {
+
+// A point on the line of action of a force F with torque T about `com`:
+// com + F x T / |F|^2 is the point of the line nearest the COM; with
+// `plane_z` the point where the line meets that height (the table plane).
+Vector3d line_of_action(const Vector3d &com, const Vector3d &force, const Vector3d &torque, const double *plane_z) {
+  const double f2 = force.squaredNorm();
+  if (f2 == 0.0) return com;
+  Vector3d point = com + force.cross(torque) / f2;
+  if (plane_z && force.z() != 0.0) point += force * ((*plane_z - point.z()) / force.z());
+  return point;
+}
+
+}  // namespace
+
+std::vector<FixRigidConvex::ContactResultant> FixRigidConvex::gather_contact_resultants() {
+  const std::size_t n = templates_.size();
+  constexpr int kRow = 12;  // table force, table point, pair force, pair point
+  std::vector<double> local(kRow * n, 0.0), global(kRow * n, 0.0);
+  double plane = plane_z_;
+  if (table_) plane += table_->state().displacement.z();
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const BodyState &s = state_[i];
+    if (s.body < 0) continue;
+    const Vector3d com(atom->x[i]);
+    const Vector3d rows[4] = {s.table_force, line_of_action(com, s.table_force, s.table_torque, &plane),
+                              s.pair_force, line_of_action(com, s.pair_force, s.pair_torque, nullptr)};
+    for (int r = 0; r < 4; ++r)
+      for (int k = 0; k < 3; ++k) local[kRow * s.body + 3 * r + k] = rows[r][k];
+  }
+  MPI_Allreduce(local.data(), global.data(), static_cast<int>(global.size()), MPI_DOUBLE, MPI_SUM, world);
+  std::vector<ContactResultant> out(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    const double *row = &global[kRow * b];
+    out[b] = {Vector3d(row), Vector3d(row + 3), Vector3d(row + 6), Vector3d(row + 9)};
+  }
+  return out;
 }
 
 void FixRigidConvex::final_integrate() {

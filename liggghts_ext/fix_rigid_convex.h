@@ -89,6 +89,18 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   const freestand::ContactLaw &law_between(int body_a, int body_b) const;
   // Histories of local atom i with `partner`, created empty when new.
   PairHistory &pair_history(int i, tagint partner);
+  // pair convex reports each body's body-on-body resultant of the step.
+  void clear_pair_resultants();
+  void add_pair_resultant(int i, const Eigen::Vector3d &force, const Eigen::Vector3d &torque);
+
+  // Resultant contact forces of every body (by scene index), with a point on
+  // their line of action: the table's in the table plane, the other bodies'
+  // nearest the COM. Collective.
+  struct ContactResultant {
+    Eigen::Vector3d table_force, table_point;  // N, m (world)
+    Eigen::Vector3d pair_force, pair_point;    // N, m (world)
+  };
+  std::vector<ContactResultant> gather_contact_resultants();
 
  private:
   // Everything about one body of the scene that does not change (cold data).
@@ -111,6 +123,10 @@ class FixRigidConvex : public Fix, public RigidBodySource {
     Eigen::Vector3d angular_momentum;                    // world (kg m^2/s)
     std::vector<freestand::ContactHistory> table_history;  // per share of table_nodes
     std::vector<PairHistory> pairs;                      // with bodies in contact (pair convex)
+    Eigen::Vector3d table_force = Eigen::Vector3d::Zero();   // this step's table contact force (N)
+    Eigen::Vector3d table_torque = Eigen::Vector3d::Zero();  // ... its torque about the COM (N m)
+    Eigen::Vector3d pair_force = Eigen::Vector3d::Zero();    // this step's body-on-body force (N)
+    Eigen::Vector3d pair_torque = Eigen::Vector3d::Zero();   // ... its torque about the COM (N m)
   };
 
   void parse(int narg, char **arg, std::string &scene_file, freestand::SceneDefaults &defaults);

@@ -14,6 +14,7 @@
 #include "comm.h"
 #include "compute_rockslide.h"
 #include "error.h"
+#include "fix_rigid_convex.h"
 #include "fix_shaketable.h"
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
@@ -27,6 +28,8 @@ namespace {
 
 const char *const kStateNames[] = {"x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
 const char *const kStateUnits[] = {"m", "m", "m", "1", "1", "1", "1", "m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s"};
+// Contact resultants of fix rigid/convex (force, and a point on its line of action).
+const char *const kContactNames[] = {"table_f", "table_p", "bodies_f", "bodies_p"};
 // The energy ledger of fix rigid/convex (docs/fix_rigid_convex.md): global
 // vector entry (1-based) and dataset name; entry 2 is a contact count.
 const std::pair<int, const char *> kLedger[] = {
@@ -37,11 +40,11 @@ const char *const kTableUnits[] = {"m/s^2", "m/s^2", "m/s^2", "m/s", "m/s", "m/s
 
 }  // namespace
 
-// fix ID group rockslide/hdf5 COMPUTE-ID N FILE [energy FIX-ID] [scenario FILE]
+// fix ID group rockslide/hdf5 COMPUTE-ID N FILE [energy FIX-ID] [contacts FIX-ID] [scenario FILE]
 FixRockSlideHDF5::FixRockSlideHDF5(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
   if (narg < 6 || narg % 2 != 0)
     error->all(FLERR, "Illegal fix rockslide/hdf5 command: fix ID group rockslide/hdf5 COMPUTE-ID N FILE "
-                      "[energy FIX-ID] [scenario FILE]");
+                      "[energy FIX-ID] [contacts FIX-ID] [scenario FILE]");
   compute_id_ = arg[3];
   char *end = nullptr;
   nevery = static_cast<int>(std::strtol(arg[4], &end, 10));
@@ -51,6 +54,8 @@ FixRockSlideHDF5::FixRockSlideHDF5(LAMMPS *lmp, int narg, char **arg) : Fix(lmp,
   for (int i = 6; i < narg; i += 2) {
     if (!std::strcmp(arg[i], "energy")) {
       energy_id_ = arg[i + 1];
+    } else if (!std::strcmp(arg[i], "contacts")) {
+      contacts_id_ = arg[i + 1];
     } else if (!std::strcmp(arg[i], "scenario")) {
       std::ifstream in(arg[i + 1]);
       if (!in) error->all(FLERR, (std::string("fix rockslide/hdf5: cannot read scenario file ") + arg[i + 1]).c_str());
@@ -59,7 +64,7 @@ FixRockSlideHDF5::FixRockSlideHDF5(LAMMPS *lmp, int narg, char **arg) : Fix(lmp,
       scenario_text_ = text.str();
     } else {
       error->all(FLERR, (std::string("fix rockslide/hdf5: unknown keyword '") + arg[i] +
-                         "' (expected energy or scenario)").c_str());
+                         "' (expected energy, contacts or scenario)").c_str());
     }
   }
 }
@@ -80,11 +85,16 @@ void FixRockSlideHDF5::init() {
   compute_ = icompute < 0 ? nullptr : dynamic_cast<ComputeRockSlide *>(modify->compute[icompute]);
   if (!compute_)
     error->all(FLERR, ("fix rockslide/hdf5: '" + compute_id_ + "' is not a compute rockslide").c_str());
-  if (energy_id_.empty()) return;
-  const int ifix = modify->find_fix(energy_id_.c_str());
-  energy_ = ifix < 0 ? nullptr : modify->fix[ifix];
-  if (!energy_ || std::strcmp(energy_->style, "rigid/convex") != 0)
-    error->all(FLERR, ("fix rockslide/hdf5: energy '" + energy_id_ + "' is not a fix rigid/convex").c_str());
+  energy_ = energy_id_.empty() ? nullptr : rigid_convex(energy_id_, "energy");
+  contacts_ = contacts_id_.empty() ? nullptr : rigid_convex(contacts_id_, "contacts");
+}
+
+FixRigidConvex *FixRockSlideHDF5::rigid_convex(const std::string &id, const char *keyword) {
+  const int ifix = modify->find_fix(id.c_str());
+  auto *fix = ifix < 0 ? nullptr : dynamic_cast<FixRigidConvex *>(modify->fix[ifix]);
+  if (!fix)
+    error->all(FLERR, (std::string("fix rockslide/hdf5: ") + keyword + " '" + id + "' is not a fix rigid/convex").c_str());
+  return fix;
 }
 
 void FixRockSlideHDF5::open_file() {
@@ -105,6 +115,10 @@ void FixRockSlideHDF5::open_file() {
     for (const auto &channel : names)
       file_->add_series(group + channel, channel.rfind("rock", 0) == 0 || channel == "twist" ? "rad" : "m");
     for (int k = 0; k < 13; ++k) file_->add_series(group + kStateNames[k], kStateUnits[k]);
+    if (contacts_)
+      for (const char *what : kContactNames)
+        for (const char *axis : {"x", "y", "z"})
+          file_->add_series(group + what + axis, what[std::strlen(what) - 2] == 'f' ? "N" : "m");
   }
   if (energy_)
     for (const auto &[entry, name] : kLedger) file_->add_series(std::string("/energy/") + name, "J");
@@ -116,13 +130,19 @@ void FixRockSlideHDF5::end_of_step() {
   if (update->ntimestep == last_written_) return;
   last_written_ = update->ntimestep;
   if (compute_->invoked_array != update->ntimestep) compute_->compute_array();
-  std::vector<double> energy;  // collective: every rank asks the fix
+  // Collective: every rank takes part; rank 0 writes.
+  std::vector<double> collective;
+  std::vector<FixRigidConvex::ContactResultant> resultants;
+  if (contacts_) resultants = contacts_->gather_contact_resultants();
+  for (const auto &r : resultants)
+    for (const Eigen::Vector3d *v : {&r.table_force, &r.table_point, &r.pair_force, &r.pair_point})
+      collective.insert(collective.end(), v->data(), v->data() + 3);
   if (energy_)
-    for (const auto &[entry, name] : kLedger) energy.push_back(energy_->compute_vector(entry - 1));
-  if (comm->me == 0) write_sample(energy);
+    for (const auto &[entry, name] : kLedger) collective.push_back(energy_->compute_vector(entry - 1));
+  if (comm->me == 0) write_sample(collective);
 }
 
-void FixRockSlideHDF5::write_sample(const std::vector<double> &energy) {
+void FixRockSlideHDF5::write_sample(const std::vector<double> &collective) {
   // Opened at the first sample, once the compute has resolved its table.
   if (!file_) {
     try {
@@ -145,8 +165,11 @@ void FixRockSlideHDF5::write_sample(const std::vector<double> &energy) {
     const Eigen::Quaterniond &q = p.orientation;
     row.insert(row.end(), {p.com.x(), p.com.y(), p.com.z(), q.w(), q.x(), q.y(), q.z(), p.velocity.x(),
                            p.velocity.y(), p.velocity.z(), p.omega.x(), p.omega.y(), p.omega.z()});
+    // Contact resultants come in scene order, as the compute's bodies do
+    // when it takes them from the same fix rigid/convex.
+    if (contacts_) row.insert(row.end(), collective.begin() + 12 * i, collective.begin() + 12 * (i + 1));
   }
-  row.insert(row.end(), energy.begin(), energy.end());
+  row.insert(row.end(), collective.begin() + (contacts_ ? 12 * poses.size() : 0), collective.end());
   try {
     file_->append(row);
   } catch (const freestand::InputError &e) {

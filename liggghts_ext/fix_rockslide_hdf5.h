@@ -34,14 +34,17 @@ class FixRockSlideHDF5 : public Fix {
 
  private:
   void open_file();
-  void write_sample(const std::vector<double> &energy);
+  class FixRigidConvex *rigid_convex(const std::string &id, const char *keyword);
+  void write_sample(const std::vector<double> &collective);
 
   std::string compute_id_;                        // ID of the compute rockslide
   std::string path_;                              // final file name
   std::string energy_id_;                         // fix whose global vector is the energy ledger, or ""
+  std::string contacts_id_;                       // fix rigid/convex whose contact resultants are written, or ""
   std::string scenario_text_;                     // stored as the root attribute "scenario", or ""
   ComputeRockSlide *compute_ = nullptr;           // resolved in init()
   Fix *energy_ = nullptr;                         // resolved in init(), with energy_id_
+  class FixRigidConvex *contacts_ = nullptr;      // resolved in init(), with contacts_id_
   std::unique_ptr<freestand::SeriesFile> file_;   // open on rank 0 only
   bigint last_written_ = -1;                      // time step of the last sample
 };

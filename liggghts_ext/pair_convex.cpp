@@ -81,6 +81,7 @@ void PairConvex::compute(int eflag, int vflag) {
   else evflag = vflag_fdotr = 0;
   ledger_.elastic = 0.0;
   pair_forces_.clear();
+  bodies_->clear_pair_resultants();
   for (int ii = 0; ii < list->inum; ++ii) {
     const int i = list->ilist[ii];
     if (bodies_->body_of(i) < 0) continue;
@@ -101,11 +102,13 @@ void PairConvex::apply_pair_forces() {
   std::sort(pair_forces_.begin(), pair_forces_.end(), [](const PairForce &x, const PairForce &y) {
     return x.atom != y.atom ? x.atom < y.atom : x.partner < y.partner;
   });
-  for (const PairForce &p : pair_forces_)
+  for (const PairForce &p : pair_forces_) {
     for (int k = 0; k < 3; ++k) {
       atom->f[p.atom][k] += p.force[k];
       atom->torque[p.atom][k] += p.torque[k];
     }
+    bodies_->add_pair_resultant(p.atom, p.force, p.torque);
+  }
 }
 
 namespace {

@@ -37,6 +37,28 @@ std::vector<SeriesBody> series_bodies(const Results& results) {
   return bodies;
 }
 
+// Per sample, each body's resultant contact forces (table, other bodies) at a
+// point of their line of action, when the results have them; the other body
+// of a body-on-body resultant is the one it stands on (-2: several or unknown).
+std::vector<std::vector<ContactVector>> contact_vectors(const Results& results) {
+  std::vector<std::vector<ContactVector>> out;
+  if (results.bodies.empty() || !results.bodies.front().has("table_fx")) return out;
+  out.resize(results.time.size());
+  for (std::size_t b = 0; b < results.bodies.size(); ++b) {
+    const BodyResults& body = results.bodies[b];
+    for (const char* kind : {"table", "bodies"}) {
+      const std::string f = std::string(kind) + "_f", p = std::string(kind) + "_p";
+      const Series &fx = body.at(f + "x"), &fy = body.at(f + "y"), &fz = body.at(f + "z");
+      const Series &px = body.at(p + "x"), &py = body.at(p + "y"), &pz = body.at(p + "z");
+      for (std::size_t k = 0; k < results.time.size(); ++k)
+        if (fx[k] != 0.0 || fy[k] != 0.0 || fz[k] != 0.0)
+          out[k].push_back({{px[k], py[k], pz[k]}, {fx[k], fy[k], fz[k]}, static_cast<int>(b),
+                            kind[0] == 't' ? -1 : -2});
+    }
+  }
+  return out;
+}
+
 SeriesHistory history_of(const Results& results) {
   SeriesHistory h;
   h.time = results.time;
@@ -57,6 +79,7 @@ SeriesHistory history_of(const Results& results) {
     }
     h.bodies.push_back(std::move(body));
   }
+  h.contacts = contact_vectors(results);
   return h;
 }
 

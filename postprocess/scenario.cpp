@@ -244,7 +244,7 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
   s += "variable        nsteps equal round(v_duration/dt)\n"
        "variable        nout equal round(1/(v_rate*dt))+(round(1/(v_rate*dt))<1)\n"
        "variable        nthermo equal ceil(v_nsteps/100)\n";
-  s += "fix             h5 all rockslide/hdf5 rs ${nout} " + files.results + " energy bodies scenario " +
+  s += "fix             h5 all rockslide/hdf5 rs ${nout} " + files.results + " energy bodies contacts bodies scenario " +
        files.scenario + "\n";
   s += "thermo_style    custom step time f_bodies[1] cpu\nthermo          ${nthermo}\n";
   s += "print           \"freestand: steps ${nsteps}\"\n";

@@ -233,7 +233,7 @@ void VtkSeriesWriter::check(const SeriesFrame& frame) const {
   }
   for (const ContactVector& c : frame.contacts) {
     const int n = static_cast<int>(bodies_.size());
-    if (c.body < 0 || c.body >= n || c.other < -1 || c.other >= n)
+    if (c.body < 0 || c.body >= n || c.other < -2 || c.other >= n)
       throw InputError(fmt::format("{}: contact between unknown bodies {} and {}", where, c.body, c.other));
     if (!finite(c.point) || !finite(c.force)) throw InputError(where + ": non-finite contact point or force");
   }

@@ -41,7 +41,7 @@ struct ContactVector {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world (m)
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on `body` (N)
   int body = 0;                                     // index into the SeriesBody list
-  int other = -1;                                   // the other body's index; -1: the table
+  int other = -1;                                   // the other body's index; -1: the table; -2: other bodies (a resultant)
 };
 
 struct SeriesFrame {

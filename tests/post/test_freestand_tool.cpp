@@ -111,3 +111,31 @@ TEST(FreestandTool, HelpListsTheSubcommands) {
   EXPECT_EQ(run(std::string(FREESTAND_TOOL) + " --help", &printed), 0);
   for (const char* sub : {"run", "post"}) EXPECT_NE(printed.find(sub), std::string::npos) << sub;
 }
+
+TEST(FreestandTool, ContactResultantsOfAStackAtRestAreItsWeights) {
+  // Two boxes at rest (100 kg on 300 kg): the table carries both weights
+  // through the middle of the lower base, the upper body rests on the lower
+  // with its own weight. 0.5 s lets the contacts' damped settling (periods of
+  // ~1 ms) die out: 1e-4 relative, and 1e-6 m for the centre of pressure.
+  const freestand::test::TempDir dir;
+  const std::string scenario = dir.write("stack.json", R"({
+    "bodies": [{"name": "lower", "shape": "box", "half_extents": [0.3, 0.3, 0.2], "mass": 300,
+                "nodes": {"layout": "vertices"}},
+               {"name": "upper", "shape": "box", "half_extents": [0.2, 0.2, 0.3], "mass": 100,
+                "supported_by": "lower", "nodes": {"layout": "vertices"}}],
+    "simulation": {"duration": 0.5}})");
+  std::string printed;
+  ASSERT_EQ(run(std::string(FREESTAND_TOOL) + " run " + scenario + " -o " + (dir / "run") + " --no-post", &printed), 0)
+      << printed;
+  const freestand::Results r = freestand::read_results(dir / "run/results.h5");
+  const double g = 9.81;
+  const auto& lower = r.body("lower");
+  const auto& upper = r.body("upper");
+  EXPECT_NEAR(lower.at("table_fz").back(), 400 * g, 1e-4 * 400 * g);
+  EXPECT_NEAR(lower.at("table_px").back(), 0.0, 1e-6);
+  EXPECT_NEAR(lower.at("table_py").back(), 0.0, 1e-6);
+  EXPECT_NEAR(lower.at("table_pz").back(), 0.0, 1e-6);
+  EXPECT_NEAR(upper.at("bodies_fz").back(), 100 * g, 1e-4 * 100 * g);
+  EXPECT_NEAR(lower.at("bodies_fz").back(), -100 * g, 1e-4 * 100 * g);
+  EXPECT_EQ(upper.at("table_fz").back(), 0.0);  // it does not touch the table
+}
