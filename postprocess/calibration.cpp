@@ -174,7 +174,9 @@ void history_residuals(const Recording& rec, const Recording& sim, const std::st
     const std::vector<double>& recorded = rec.body_channel(body, channel);
     const double scale = peak_abs(recorded);
     const bool length = channel[0] == 's';
-    if (scale < (length ? 1e-3 : 5e-3)) continue;  // 1 mm, 5 mrad: below this a channel is noise
+    // Below 2 mm or 20 mrad a channel is mostly measurement noise: dividing by
+    // its peak would make noise the largest residuals.
+    if (scale < (length ? 2e-3 : 2e-2)) continue;
     const std::vector<double>& simulated = sim.body_channel(body, channel);
     for (std::size_t k : samples) {
       const double r = (linear_interpolate(sim.time, simulated, rec.time[k]) - recorded[k]) / scale;
@@ -183,7 +185,7 @@ void history_residuals(const Recording& rec, const Recording& sim, const std::st
     ++compared;
   }
   if (compared == 0)
-    throw InputError(fmt::format("{}: body '{}' neither slides (1 mm), rocks nor twists (5 mrad): nothing to compare",
+    throw InputError(fmt::format("{}: body '{}' neither slides (2 mm), rocks nor twists (20 mrad): nothing to compare",
                                  rec.path, body));
 }
 
@@ -471,11 +473,25 @@ json recording_scenario(const json& model, const Recording& recording, const std
   return doc;
 }
 
-Recording simulate_recording(const json& model, const Recording& recording, const std::string& directory) {
+Recording run_scenario_document(const json& document, const std::string& directory) {
   fs::create_directories(directory);
   Scenario scenario;
   scenario.path = (fs::path(directory) / "scenario.json").string();
-  scenario.document = model;
+  scenario.document = document;
+  const RunFiles files;
+  const GeneratedRun run = generate_run(scenario, files);
+  write_file_atomically((fs::path(directory) / files.scenario).string(), document.dump(2) + "\n");
+  write_file_atomically((fs::path(directory) / files.scene).string(), run.scene.dump(2) + "\n");
+  write_file_atomically((fs::path(directory) / files.script).string(), run.script);
+  const LiggghtsOutcome outcome =
+      run_liggghts({default_liggghts_executable(), directory, files.script, "log.liggghts", 1}, [](long, long) {});
+  if (outcome.status != 0)
+    throw InputError(fmt::format("{}: simulation failed: {}", scenario.path, outcome.error));
+  return results_as_recording(read_results((fs::path(directory) / files.results).string()));
+}
+
+Recording simulate_recording(const json& model, const Recording& recording, const std::string& directory) {
+  fs::create_directories(directory);
   if (model.contains("table_motion")) {
     std::string table = "t";
     std::vector<const std::vector<double>*> columns;
@@ -494,16 +510,7 @@ Recording simulate_recording(const json& model, const Recording& recording, cons
     }
     write_file_atomically((fs::path(directory) / "table_motion.csv").string(), table);
   }
-  const RunFiles files;
-  const GeneratedRun run = generate_run(scenario, files);
-  write_file_atomically((fs::path(directory) / files.scenario).string(), model.dump(2) + "\n");
-  write_file_atomically((fs::path(directory) / files.scene).string(), run.scene.dump(2) + "\n");
-  write_file_atomically((fs::path(directory) / files.script).string(), run.script);
-  const LiggghtsOutcome outcome =
-      run_liggghts({default_liggghts_executable(), directory, files.script, "log.liggghts", 1}, [](long, long) {});
-  if (outcome.status != 0)
-    throw InputError(fmt::format("{}: simulation failed: {}", recording.path, outcome.error));
-  Recording simulated = results_as_recording(read_results((fs::path(directory) / files.results).string()));
+  Recording simulated = run_scenario_document(model, directory);
   for (double& t : simulated.time) t += recording.time.front();
   return simulated;
 }
@@ -642,6 +649,10 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
     result.estimates.push_back(estimate(params[i], values.back(), standard_error[i], t_quantile_975(dof)));
   }
   result.model = model;
+  // Friction of a model without interfaces: on the first recording's ones
+  // (contact has no mu_s, mu_k).
+  if (!model.contains("interfaces") && recordings.front().nominal.contains("interfaces"))
+    result.model["interfaces"] = recordings.front().nominal["interfaces"];
   apply_parameters(result.model, params, values);
   if (own_directory) {
     std::error_code ignored;

@@ -55,6 +55,11 @@ const char* kind_name(RecordingKind kind);
 nlohmann::json recording_scenario(const nlohmann::json& model, const Recording& recording,
                                   const std::string& table_file);
 
+// Runs a scenario document in `directory` (created; relative paths in it
+// resolve from there) and returns its results as a recording. Throws
+// InputError with the LIGGGHTS error when the run fails.
+Recording run_scenario_document(const nlohmann::json& document, const std::string& directory);
+
 // Simulates `recording` under `model` in `directory` (created; left in place)
 // and returns the results as a recording. Throws InputError with the
 // LIGGGHTS error when the run fails.
