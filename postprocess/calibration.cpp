@@ -31,6 +31,11 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// A failed simulation gives every residual this value: an order of magnitude
+// beyond any residual of a model that ran, so the optimiser moves away.
+const double kFailedResidual = 10.0;
+
+
 // Default bounds and start of the parameters calibrate knows. Bounds are wide
 // on purpose: the data, not the defaults, should decide.
 const CalibrationParameter kKnownParameters[] = {
@@ -42,10 +47,6 @@ const CalibrationParameter kKnownParameters[] = {
     {"friction_decay", 0.0, 50.0, 5.0, false},  // s/m
     {"table_height", -0.01, 0.01, 0.0, false},  // m
 };
-
-// A failed simulation gives every residual this value: an order of magnitude
-// beyond any residual of a model that ran, so the optimiser moves away.
-const double kFailedResidual = 10.0;
 
 double linear_interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
   if (at <= t.front()) return y.front();
@@ -179,8 +180,10 @@ void history_residuals(const Recording& rec, const Recording& sim, const std::st
     if (scale < (length ? 2e-3 : 2e-2)) continue;
     const std::vector<double>& simulated = sim.body_channel(body, channel);
     for (std::size_t k : samples) {
-      const double r = (linear_interpolate(sim.time, simulated, rec.time[k]) - recorded[k]) / scale;
-      out.push_back(std::isfinite(r) ? r : 0.0);
+      // A lost recorded sample compares with nothing; a simulation that
+      // went non-finite (it blew up) is as bad as one that failed.
+      const double s = linear_interpolate(sim.time, simulated, rec.time[k]);
+      out.push_back(!std::isfinite(recorded[k]) ? 0.0 : std::isfinite(s) ? (s - recorded[k]) / scale : kFailedResidual);
     }
     ++compared;
   }
@@ -195,6 +198,7 @@ void trajectory_residuals(const Recording& rec, const Recording& sim, const std:
   for (std::size_t k = 0; k < rec.time.size(); ++k) {
     const Pose r = pose_at(rec, body, k), s = pose_at_time(sim, body, rec.time[k]);
     Eigen::Matrix<double, 6, 1> e = Eigen::Matrix<double, 6, 1>::Zero();
+    if (r.valid && !s.valid) e.setConstant(kFailedResidual);
     if (r.valid && s.valid) {
       const Eigen::AngleAxisd turn(s.orientation.conjugate() * r.orientation);
       e.head<3>() = (s.centre - r.centre) / size;

@@ -20,7 +20,7 @@ using nlohmann::json;
 // Known parameters of the synthetic recordings.
 const double kStiffness = 2e7;   // N/m^3 per area: the block sinks 0.75 mm at rest, enough for rocking to feel it
 const double kRestitution = 0.3;
-const double kMuS = 0.35, kMuK = 0.25;
+const double kMuS = 0.35, kMuK = 0.25;  // in the recordings; the test fits restitution only
 
 // A 0.2 x 0.2 x 0.6 m, 60 kg block on its corners, released at rest tilted by
 // half its slenderness (alpha = atan(1/3)) about the y axis, pivot on the +x edge.
@@ -48,42 +48,34 @@ json sliding_scenario() {
   return s;
 }
 
-// The model the calibration starts from: same numerics, nothing known.
-json model() { return {{"simulation", {{"time_step", 1e-4}}}}; }
+// The model the calibration starts from: same numerics and stiffness.
+json model() { return {{"simulation", {{"time_step", 1e-4}}}, {"contact", {{"stiffness", kStiffness}}}}; }
 
-TEST(Calibration, RecoversKnownParametersFromNoisyRockingAndSliding) {
+// Restitution from noisy free rocking, stiffness and friction known. The
+// joint fit of stiffness, restitution, mu_s and mu_k to this rocking record
+// and the sliding one below does NOT recover them (docs/validation.md, last
+// section): stiffness and restitution trade off along a valley of the
+// rocking objective, and the replayed table does not reproduce the sliding
+// record at the true parameters. Tolerance 0.02 on e = 0.3: the per-impact
+// amplitudes carry 0.6 % noise (1 mrad of 0.16 rad), which the Gauss-Newton
+// interval (14 residuals) understates; measured 0.3089.
+TEST(Calibration, RecoversRestitutionFromNoisyFreeRocking) {
   test::TempDir dir;
-  // Noise: 1 mrad on the angles (0.6 % of the 0.16 rad release), 0.5 mm on
-  // the slides (about 1 % of the peak slide).
-  const MeasurementNoise noise{1e-3, 5e-4, 7};
-  std::vector<Recording> recordings = {synthetic_recording(rocking_scenario(), dir / "rocking", noise),
-                                       synthetic_recording(sliding_scenario(), dir / "sliding", noise)};
-  recordings[0].path = "rocking", recordings[1].path = "sliding";
+  const MeasurementNoise noise{1e-3, 5e-4, 7};  // 1 mrad on the angles, 0.5 mm on lengths
+  std::vector<Recording> recordings = {synthetic_recording(rocking_scenario(), dir / "rocking", noise)};
+  recordings[0].path = "rocking";
   ASSERT_EQ(classify_recording(recordings[0]), RecordingKind::kRocking);
-  ASSERT_EQ(classify_recording(recordings[1]), RecordingKind::kHistory);
+  ASSERT_EQ(classify_recording(synthetic_recording(sliding_scenario(), dir / "sliding", noise)),
+            RecordingKind::kHistory);
   CalibrationOptions options;
-  options.parameters = {parse_calibration_parameter("stiffness:3e6:3e8:1e8"),
-                        parse_calibration_parameter("restitution:0.05:0.8:0.5"),
-                        parse_calibration_parameter("mu_s:0.1:0.6:0.45"),
-                        parse_calibration_parameter("mu_k:0.1:0.6:0.4")};
-  options.max_evaluations = 45;
-  if (std::getenv("DIAG")) {
-    options.parameters = {parse_calibration_parameter("stiffness:3e6:3e8:2e7"),
-                        parse_calibration_parameter("restitution:0.05:0.8:0.3"),
-                        parse_calibration_parameter("mu_s:0.1:0.6:0.35"),
-                        parse_calibration_parameter("mu_k:0.1:0.6:0.25")};
-    options.max_evaluations = 1;
-  }
+  options.parameters = {parse_calibration_parameter("restitution:0.05:0.8:0.5")};
+  options.max_evaluations = 25;
   options.work_directory = dir / "runs";
   const CalibrationResult fit = calibrate(model(), recordings, options);
-  const double truth[] = {kStiffness, kRestitution, kMuS, kMuK};
-  for (std::size_t i = 0; i < 4; ++i) {
-    const ParameterEstimate& e = fit.estimates[i];
-    std::printf("%-12s true %.4g fitted %.4g se %.3g [%.4g, %.4g]\n", e.parameter.name.c_str(), truth[i], e.value,
-                e.standard_error, e.lower95, e.upper95);
-  }
-  std::printf("objective %.4g -> %.4g, %d residuals, %d evaluations\n", fit.objective_start, fit.objective,
-              fit.residual_count, fit.evaluations);
+  EXPECT_NEAR(fit.estimates[0].value, kRestitution, 0.02);
+  EXPECT_TRUE(std::isfinite(fit.estimates[0].standard_error));
+  EXPECT_LT(fit.objective, 0.01 * fit.objective_start);  // the mismatch at the start was real
+  EXPECT_NEAR(fit.model["interfaces"][0]["restitution"].get<double>(), fit.estimates[0].value, 1e-12);
 }
 
 // The pose metrics on a trajectory displaced by a known amount: a recording
