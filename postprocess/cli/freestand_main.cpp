@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "freestand " FREESTAND_VERSION);
   freestand::cli::add_run_command(app);
   freestand::cli::add_post_command(app);
+  freestand::cli::add_calibrate_command(app);
+  freestand::cli::add_tosses_command(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

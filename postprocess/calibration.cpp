@@ -1,0 +1,698 @@
+#include "calibration.h"
+
+#include <fmt/format.h>
+#include <stdlib.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <nlopt.hpp>
+#include <thread>
+
+#include "atomic_file.h"
+#include "freestand/input_error.h"
+#include "freestand/scene.h"
+#include "liggghts_runner.h"
+#include "scenario.h"
+
+namespace freestand {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A failed simulation gives every residual this value: an order of magnitude
+// beyond any residual of a model that ran, so the optimiser moves away.
+const double kFailedResidual = 10.0;
+
+
+// Default bounds and start of the parameters calibrate knows. Bounds are wide
+// on purpose: the data, not the defaults, should decide.
+const CalibrationParameter kKnownParameters[] = {
+    {"stiffness", 1e6, 1e11, 1e9, true},       // N/m^3 per area
+    {"restitution", 0.02, 0.95, 0.3, false},   // flat face-on impact
+    {"mu", 0.02, 1.5, 0.5, false},
+    {"mu_s", 0.02, 1.5, 0.5, false},
+    {"mu_k", 0.02, 1.5, 0.5, false},
+    {"friction_decay", 0.0, 50.0, 5.0, false},  // s/m
+    {"table_height", -0.01, 0.01, 0.0, false},  // m
+};
+
+double linear_interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
+  if (at <= t.front()) return y.front();
+  if (at >= t.back()) return y.back();
+  const std::size_t i = std::upper_bound(t.begin(), t.end(), at) - t.begin();
+  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
+  return y[i - 1] + w * (y[i] - y[i - 1]);
+}
+
+// A body's pose at time `at`: centre linearly, orientation by slerp.
+struct Pose {
+  Eigen::Vector3d centre;
+  Eigen::Quaterniond orientation;
+  bool valid = false;
+};
+Pose pose_at(const Recording& r, const std::string& body, std::size_t k) {
+  Pose p;
+  double v[7];
+  const char* keys[] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
+  for (int i = 0; i < 7; ++i) v[i] = r.body_channel(body, keys[i])[k];
+  p.centre = {v[0], v[1], v[2]};
+  p.orientation = Eigen::Quaterniond(v[3], v[4], v[5], v[6]);
+  p.valid = std::all_of(v, v + 7, [](double x) { return std::isfinite(x); });
+  if (p.valid) p.orientation.normalize();
+  return p;
+}
+Pose pose_at_time(const Recording& r, const std::string& body, double at) {
+  const std::vector<double>& t = r.time;
+  const std::size_t i = std::min<std::size_t>(std::upper_bound(t.begin(), t.end(), at) - t.begin(), t.size() - 1);
+  if (i == 0 || at >= t.back()) return pose_at(r, body, i);
+  const Pose a = pose_at(r, body, i - 1), b = pose_at(r, body, i);
+  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
+  Pose p;
+  p.valid = a.valid && b.valid;
+  if (p.valid) {
+    p.centre = a.centre + w * (b.centre - a.centre);
+    p.orientation = a.orientation.slerp(w, b.orientation);
+  }
+  return p;
+}
+
+bool has_pose(const Recording& r, const std::string& body) { return r.find(body + ".qw") != nullptr; }
+
+// Indices of at most `count` samples spread evenly over the record.
+std::vector<std::size_t> spread_samples(std::size_t size, std::size_t count) {
+  std::vector<std::size_t> k;
+  const std::size_t n = std::min(size, count);
+  for (std::size_t i = 0; i < n; ++i) k.push_back(n == 1 ? 0 : i * (size - 1) / (n - 1));
+  return k;
+}
+
+// Free rocking reduced to its impacts: an impact is a change of sign of the
+// rock angle confirmed by the angle passing `hysteresis` on the other side
+// (so noise near zero does not count), timed at the zero crossing; the
+// amplitude of a half-cycle is its largest |angle|.
+struct RockingFeatures {
+  std::vector<double> impact_times, amplitudes;  // amplitudes[i]: half-cycle after impact i
+};
+RockingFeatures rocking_features(const std::vector<double>& t, const std::vector<double>& angle, double hysteresis) {
+  RockingFeatures f;
+  int side = 0;
+  double crossing = t.front(), peak = 0.0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double a = angle[k];
+    if (!std::isfinite(a)) continue;
+    if (k > 0 && std::isfinite(angle[k - 1]) && (a > 0) != (angle[k - 1] > 0))
+      crossing = t[k - 1] + (t[k] - t[k - 1]) * angle[k - 1] / (angle[k - 1] - a);
+    const int now = a > hysteresis ? 1 : a < -hysteresis ? -1 : 0;
+    if (now != 0 && side != 0 && now != side) {
+      if (!f.impact_times.empty()) f.amplitudes.push_back(peak);
+      f.impact_times.push_back(crossing);
+      peak = 0.0;
+    }
+    if (now != 0) side = now;
+    if (!f.impact_times.empty()) peak = std::max(peak, std::abs(a));
+  }
+  if (!f.impact_times.empty()) f.amplitudes.push_back(peak);
+  return f;
+}
+
+// The rock channel of a body that moves most in the recording.
+std::string rocking_channel(const Recording& r, const std::string& body) {
+  double best = -1.0;
+  std::string channel;
+  for (const char* c : {"rock_x", "rock_y"}) {
+    double range = 0.0;
+    for (double v : r.body_channel(body, c)) if (std::isfinite(v)) range = std::max(range, std::abs(v));
+    if (range > best) best = range, channel = c;
+  }
+  return channel;
+}
+
+double peak_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) if (std::isfinite(x)) m = std::max(m, std::abs(x));
+  return m;
+}
+
+const int kMaxImpacts = 10;          // impacts compared per recording: later ones are small and noisy
+const std::size_t kHistorySamples = 100;  // samples compared per channel of a history
+
+void rocking_residuals(const Recording& rec, const Recording& sim, const std::string& body,
+                       std::vector<double>& out) {
+  const std::string channel = rocking_channel(rec, body);
+  const std::vector<double>& angle = rec.body_channel(body, channel);
+  const double amplitude = peak_abs(angle), hysteresis = 0.05 * amplitude;
+  const RockingFeatures recorded = rocking_features(rec.time, angle, hysteresis);
+  if (recorded.impact_times.empty())
+    throw InputError(fmt::format("{}: body '{}' does not rock ({} never changes sign by more than {:.3g} rad): "
+                                 "no impacts to compare", rec.path, body, channel, hysteresis));
+  const RockingFeatures simulated = rocking_features(sim.time, sim.body_channel(body, channel), hysteresis);
+  const double time_scale = recorded.impact_times.front() - rec.time.front();
+  const std::size_t n = std::min<std::size_t>(recorded.impact_times.size(), kMaxImpacts);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool happened = i < simulated.impact_times.size();
+    out.push_back(((happened ? simulated.impact_times[i] : rec.time.back()) - recorded.impact_times[i]) / time_scale);
+    out.push_back(((happened ? simulated.amplitudes[i] : 0.0) - recorded.amplitudes[i]) / amplitude);
+  }
+}
+
+void history_residuals(const Recording& rec, const Recording& sim, const std::string& body,
+                       std::vector<double>& out) {
+  const std::vector<std::size_t> samples = spread_samples(rec.time.size(), kHistorySamples);
+  int compared = 0;
+  for (const char* channel : {"slide_x", "slide_y", "rock_x", "rock_y", "twist"}) {
+    const std::vector<double>& recorded = rec.body_channel(body, channel);
+    const double scale = peak_abs(recorded);
+    const bool length = channel[0] == 's';
+    // Below 2 mm or 20 mrad a channel is mostly measurement noise: dividing by
+    // its peak would make noise the largest residuals.
+    if (scale < (length ? 2e-3 : 2e-2)) continue;
+    const std::vector<double>& simulated = sim.body_channel(body, channel);
+    for (std::size_t k : samples) {
+      // A lost recorded sample compares with nothing; a simulation that
+      // went non-finite (it blew up) is as bad as one that failed.
+      const double s = linear_interpolate(sim.time, simulated, rec.time[k]);
+      out.push_back(!std::isfinite(recorded[k]) ? 0.0 : std::isfinite(s) ? (s - recorded[k]) / scale : kFailedResidual);
+    }
+    ++compared;
+  }
+  if (compared == 0)
+    throw InputError(fmt::format("{}: body '{}' neither slides (2 mm), rocks nor twists (20 mrad): nothing to compare",
+                                 rec.path, body));
+}
+
+void trajectory_residuals(const Recording& rec, const Recording& sim, const std::string& body,
+                          std::vector<double>& out) {
+  const double size = body_size(rec, body);
+  for (std::size_t k = 0; k < rec.time.size(); ++k) {
+    const Pose r = pose_at(rec, body, k), s = pose_at_time(sim, body, rec.time[k]);
+    Eigen::Matrix<double, 6, 1> e = Eigen::Matrix<double, 6, 1>::Zero();
+    if (r.valid && !s.valid) e.setConstant(kFailedResidual);
+    if (r.valid && s.valid) {
+      const Eigen::AngleAxisd turn(s.orientation.conjugate() * r.orientation);
+      e.head<3>() = (s.centre - r.centre) / size;
+      e.tail<3>() = 0.5 * turn.angle() * turn.axis();  // a face centre moves by angle x size/2
+    }
+    for (int i = 0; i < 6; ++i) out.push_back(e[i]);
+  }
+}
+
+// A symmetry-blind face label: which signed body axis points down.
+int down_face(const Eigen::Quaterniond& q) {
+  const Eigen::Vector3d down = q.conjugate() * Eigen::Vector3d(0, 0, -1);
+  int axis;
+  down.cwiseAbs().maxCoeff(&axis);
+  return 2 * axis + (down[axis] < 0);
+}
+
+// First time after which the pose stays within 2 % of `size` and 2 degrees
+// of the final pose.
+double rest_time(const std::vector<double>& t, const std::vector<Pose>& poses, double size) {
+  const Pose& last = poses.back();
+  for (std::size_t k = poses.size(); k-- > 0;) {
+    if (!poses[k].valid) continue;
+    const double moved = (poses[k].centre - last.centre).norm();
+    const double turned = poses[k].orientation.angularDistance(last.orientation);
+    if (moved > 0.02 * size || turned > 2.0 * M_PI / 180.0) return t[std::min(k + 1, t.size() - 1)];
+  }
+  return t.front();
+}
+
+std::string make_temporary_directory() {
+  std::string pattern = (fs::temp_directory_path() / "freestand_calibrate_XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw InputError("cannot create a temporary directory for the calibration runs");
+  return pattern;
+}
+
+// Scaled coordinate u in [0, 1] <-> parameter value.
+double to_value(const CalibrationParameter& p, double u) {
+  return p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
+                     : p.lower + u * (p.upper - p.lower);
+}
+double to_scaled(const CalibrationParameter& p, double value) {
+  return p.log_scale ? (std::log(value) - std::log(p.lower)) / (std::log(p.upper) - std::log(p.lower))
+                     : (value - p.lower) / (p.upper - p.lower);
+}
+// d(value or log value)/du: converts a scaled standard error to SI (or to log).
+double scale_span(const CalibrationParameter& p) {
+  return p.log_scale ? std::log(p.upper) - std::log(p.lower) : p.upper - p.lower;
+}
+
+ParameterEstimate estimate(const CalibrationParameter& p, double value, double standard_error, double quantile) {
+  ParameterEstimate e{p, value, standard_error, kNaN, kNaN};
+  if (std::isfinite(standard_error)) {
+    e.lower95 = p.log_scale ? value * std::exp(-quantile * standard_error) : value - quantile * standard_error;
+    e.upper95 = p.log_scale ? value * std::exp(quantile * standard_error) : value + quantile * standard_error;
+  }
+  return e;
+}
+
+double sum_of_squares(const std::vector<double>& r) {
+  double s = 0.0;
+  for (double x : r) s += x * x;
+  return s;
+}
+
+// Runs (model, recording) pairs `jobs` at a time, each in its own directory
+// (removed after reading); a failed run leaves its exception in `failures`.
+std::vector<Recording> simulate_parallel(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
+                                         const std::string& directory, int jobs,
+                                         std::vector<std::exception_ptr>* failures) {
+  std::vector<Recording> out(models.size());
+  failures->assign(models.size(), nullptr);
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < models.size();) {
+      const std::string dir = (fs::path(directory) / fmt::format("run_{}", i)).string();
+      try {
+        out[i] = simulate_recording(models[i], *recordings[i], dir);
+      } catch (...) {
+        (*failures)[i] = std::current_exception();
+      }
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int k = 0; k < std::max(1, jobs); ++k) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  return out;
+}
+
+// Evaluates parameter points on all recordings: residual vectors per point,
+// and per (point, recording) the residual count and sum of squares.
+class Evaluator {
+ public:
+  Evaluator(const json& model, const std::vector<Recording>& recordings, const CalibrationOptions& options,
+            std::string directory)
+      : recordings_(recordings), options_(options), directory_(std::move(directory)) {
+    for (const Recording& r : recordings) {
+      kinds_.push_back(classify_recording(r));
+      bases_.push_back(recording_scenario(model, r, "table_motion.csv"));
+    }
+  }
+
+  struct Point {
+    std::vector<double> residuals;
+    std::vector<double> recording_rms;
+  };
+
+  std::vector<Point> evaluate(const std::vector<std::vector<double>>& scaled_points) {
+    std::vector<json> models;
+    std::vector<const Recording*> runs;
+    for (const auto& u : scaled_points) {
+      std::vector<double> values;
+      for (std::size_t i = 0; i < u.size(); ++i) values.push_back(to_value(options_.parameters[i], u[i]));
+      for (std::size_t r = 0; r < recordings_.size(); ++r) {
+        models.push_back(bases_[r]);
+        apply_parameters(models.back(), options_.parameters, values);
+        runs.push_back(&recordings_[r]);
+      }
+    }
+    const std::string batch = (fs::path(directory_) / fmt::format("batch_{}", batches_++)).string();
+    std::vector<std::exception_ptr> failures;
+    const std::vector<Recording> simulated = simulate_parallel(models, runs, batch, options_.jobs, &failures);
+    std::vector<Point> points(scaled_points.size());
+    for (std::size_t p = 0, j = 0; p < points.size(); ++p) {
+      for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) {
+        std::vector<double> residuals;
+        if (!failures[j]) residuals = calibration_residuals(kinds_[r], recordings_[r], simulated[j]);
+        else residuals.assign(residual_counts(r), kFailedResidual), ++failed_runs;
+        if (residual_counts_.size() <= r) residual_counts_.push_back(residuals.size());
+        points[p].recording_rms.push_back(std::sqrt(sum_of_squares(residuals) / residuals.size()));
+        points[p].residuals.insert(points[p].residuals.end(), residuals.begin(), residuals.end());
+      }
+    }
+    return points;
+  }
+
+  RecordingKind kind(std::size_t r) const { return kinds_[r]; }
+  int failed_runs = 0;
+
+ private:
+  std::size_t residual_counts(std::size_t r) {
+    if (r >= residual_counts_.size())
+      throw InputError(fmt::format("{}: the simulation with the starting values failed", recordings_[r].path));
+    return residual_counts_[r];
+  }
+
+  const std::vector<Recording>& recordings_;
+  const CalibrationOptions& options_;
+  std::string directory_;
+  std::vector<RecordingKind> kinds_;
+  std::vector<json> bases_;
+  std::vector<std::size_t> residual_counts_;
+  int batches_ = 0;
+};
+
+nlopt::algorithm nlopt_algorithm(const std::string& name) {
+  if (name == "bobyqa") return nlopt::LN_BOBYQA;
+  if (name == "sbplx") return nlopt::LN_SBPLX;
+  if (name == "neldermead") return nlopt::LN_NELDERMEAD;
+  throw InputError(fmt::format("calibration: unknown algorithm '{}' (bobyqa, sbplx, neldermead)", name));
+}
+
+// Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
+double t_quantile_975(int dof) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228};
+  if (dof < 1) return kNaN;
+  return dof <= 10 ? table[dof - 1] : dof <= 30 ? 2.042 + (2.228 - 2.042) * (30 - dof) / 20.0 : 1.96;
+}
+
+}  // namespace
+
+CalibrationParameter parse_calibration_parameter(const std::string& spec) {
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    const std::size_t colon = spec.find(':', start);
+    parts.push_back(spec.substr(start, colon == std::string::npos ? colon : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  const auto known = std::find_if(std::begin(kKnownParameters), std::end(kKnownParameters),
+                                  [&](const CalibrationParameter& p) { return p.name == parts[0]; });
+  if (known == std::end(kKnownParameters))
+    throw InputError(fmt::format("--fit '{}': unknown parameter '{}' (stiffness, restitution, mu, mu_s, mu_k, "
+                                 "friction_decay, table_height)", spec, parts[0]));
+  CalibrationParameter p = *known;
+  if (parts.size() == 2 || parts.size() > 4)
+    throw InputError(fmt::format("--fit '{}': expected NAME, NAME:LOWER:UPPER or NAME:LOWER:UPPER:START", spec));
+  try {
+    if (parts.size() >= 3) p.lower = std::stod(parts[1]), p.upper = std::stod(parts[2]);
+    p.start = parts.size() == 4 ? std::stod(parts[3]) : p.log_scale ? std::sqrt(p.lower * p.upper)
+                                                                    : parts.size() >= 3 ? 0.5 * (p.lower + p.upper)
+                                                                                        : p.start;
+  } catch (const std::exception&) {
+    throw InputError(fmt::format("--fit '{}': bounds and start must be numbers", spec));
+  }
+  if (!(p.lower < p.upper) || (p.log_scale && !(p.lower > 0)) || !(p.start >= p.lower && p.start <= p.upper))
+    throw InputError(fmt::format("--fit '{}': need LOWER < UPPER (> 0 for {}) and START within them", spec, p.name));
+  return p;
+}
+
+void apply_parameters(json& document, const std::vector<CalibrationParameter>& parameters,
+                      const std::vector<double>& values) {
+  json* interfaces = document.contains("interfaces") && !document["interfaces"].empty() ? &document["interfaces"]
+                                                                                         : nullptr;
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    const std::string& name = parameters[i].name;
+    const double value = values[i];
+    if (name == "table_height") {
+      document["table_height"] = value;
+    } else if (name == "stiffness") {
+      document["contact"]["stiffness"] = value;
+      if (interfaces) for (json& f : *interfaces) f.erase("contact_stiffness");
+    } else if (!interfaces) {
+      if (name == "mu_s" || name == "mu_k")
+        throw InputError(fmt::format("calibration: {} is set on interfaces, and the scenario has none "
+                                     "(fit mu, or state the interfaces)", name));
+      document["contact"][name] = value;
+    } else {
+      for (json& f : *interfaces) {
+        if ((name == "mu_s" || name == "mu_k") && f.contains("mu")) {
+          f["mu_s"] = f["mu_k"] = f["mu"];
+          f.erase("mu");
+        }
+        if (name == "mu") f.erase("mu_s"), f.erase("mu_k");
+        f[name] = value;
+      }
+    }
+  }
+  if (interfaces)
+    for (json& f : *interfaces)
+      if (f.contains("mu_s") && f.contains("mu_k") && f["mu_k"].get<double>() > f["mu_s"].get<double>())
+        f["mu_k"] = f["mu_s"];
+}
+
+const char* kind_name(RecordingKind kind) {
+  switch (kind) {
+    case RecordingKind::kRocking: return "free rocking";
+    case RecordingKind::kHistory: return "moving table";
+    case RecordingKind::kTrajectory: return "launched";
+  }
+  return "";
+}
+
+RecordingKind classify_recording(const Recording& r) {
+  for (char axis : {'x', 'y', 'z'})
+    if (r.table_channel('a', axis)) return RecordingKind::kHistory;
+  for (const json& body : r.nominal.at("bodies"))
+    for (const char* key : {"velocity", "omega"})
+      if (body.contains(key))
+        for (const json& v : body[key])
+          if (v.get<double>() != 0.0) {
+            if (!has_pose(r, body.at("name").get<std::string>()))
+              throw InputError(fmt::format("{}: body '{}' is launched (initial {}) but the recording has no pose "
+                                           "columns to compare its trajectory with", r.path,
+                                           body.at("name").get<std::string>(), key));
+            return RecordingKind::kTrajectory;
+          }
+  return RecordingKind::kRocking;
+}
+
+json recording_scenario(const json& model, const Recording& recording, const std::string& table_file) {
+  json doc = model;
+  doc.erase("table_motion");
+  doc.erase("duration");
+  for (const char* key : {"bodies", "interfaces", "gravity", "table_height"})
+    if (recording.nominal.contains(key)) doc[key] = recording.nominal[key];
+  const double length = recording.time.back() - recording.time.front();
+  doc["simulation"]["duration"] = length;
+  doc["simulation"]["output_rate"] = (recording.time.size() - 1) / length;
+  for (char axis : {'x', 'y', 'z'})
+    if (recording.table_channel('a', axis))
+      doc["table_motion"][std::string(1, axis)] = {
+          {"record", table_file}, {"format", "csv"}, {"column", std::string("a") + axis}, {"units", "m/s^2"}};
+  return doc;
+}
+
+Recording run_scenario_document(const json& document, const std::string& directory) {
+  fs::create_directories(directory);
+  Scenario scenario;
+  scenario.path = (fs::path(directory) / "scenario.json").string();
+  scenario.document = document;
+  const RunFiles files;
+  const GeneratedRun run = generate_run(scenario, files);
+  write_file_atomically((fs::path(directory) / files.scenario).string(), document.dump(2) + "\n");
+  write_file_atomically((fs::path(directory) / files.scene).string(), run.scene.dump(2) + "\n");
+  write_file_atomically((fs::path(directory) / files.script).string(), run.script);
+  const LiggghtsOutcome outcome =
+      run_liggghts({default_liggghts_executable(), directory, files.script, "log.liggghts", 1}, [](long, long) {});
+  if (outcome.status != 0)
+    throw InputError(fmt::format("{}: simulation failed: {}", scenario.path, outcome.error));
+  return results_as_recording(read_results((fs::path(directory) / files.results).string()));
+}
+
+Recording simulate_recording(const json& model, const Recording& recording, const std::string& directory) {
+  fs::create_directories(directory);
+  if (model.contains("table_motion")) {
+    std::string table = "t";
+    std::vector<const std::vector<double>*> columns;
+    for (char axis : {'x', 'y', 'z'})
+      if (const std::vector<double>* a = recording.table_channel('a', axis)) table += std::string(",a") + axis, columns.push_back(a);
+    table += "\n";
+    for (std::size_t k = 0; k < recording.time.size(); ++k) {
+      table += fmt::format("{:.17g}", recording.time[k] - recording.time.front());
+      for (const auto* c : columns) {
+        if (!std::isfinite((*c)[k]))
+          throw InputError(fmt::format("{}: table acceleration lost at t = {} s: cannot replay the table",
+                                       recording.path, recording.time[k]));
+        table += fmt::format(",{:.17g}", (*c)[k]);
+      }
+      table += "\n";
+    }
+    write_file_atomically((fs::path(directory) / "table_motion.csv").string(), table);
+  }
+  Recording simulated = run_scenario_document(model, directory);
+  for (double& t : simulated.time) t += recording.time.front();
+  return simulated;
+}
+
+std::vector<double> calibration_residuals(RecordingKind kind, const Recording& recorded, const Recording& simulated) {
+  std::vector<double> out;
+  for (const std::string& body : recorded.body_names()) {
+    if (kind == RecordingKind::kRocking) rocking_residuals(recorded, simulated, body, out);
+    else if (kind == RecordingKind::kHistory) history_residuals(recorded, simulated, body, out);
+    else if (has_pose(recorded, body)) trajectory_residuals(recorded, simulated, body, out);
+  }
+  return out;
+}
+
+double body_size(const Recording& r, const std::string& body) {
+  json scene = json::object();
+  for (const char* key : {"bodies", "interfaces", "gravity"})
+    if (r.nominal.contains(key)) scene[key] = r.nominal[key];
+  for (const BodySpec& b : parse_scene(scene, r.path + " (nominal)").bodies)
+    if (b.name == body) return std::cbrt(b.geometry.volume());
+  throw InputError(fmt::format("{}: no body '{}' in the nominal", r.path, body));
+}
+
+TrajectoryErrors trajectory_errors(const Recording& recorded, const Recording& simulated, const std::string& body,
+                                   double size) {
+  TrajectoryErrors e;
+  std::vector<Pose> rec, sim;
+  int count = 0;
+  for (std::size_t k = 0; k < recorded.time.size(); ++k) {
+    rec.push_back(pose_at(recorded, body, k));
+    sim.push_back(pose_at_time(simulated, body, recorded.time[k]));
+    if (!rec.back().valid || !sim.back().valid) continue;
+    e.mean_position += (sim.back().centre - rec.back().centre).norm() / size;
+    ++count;
+  }
+  e.mean_position /= std::max(count, 1);
+  std::size_t last = rec.size() - 1;
+  while (last > 0 && !(rec[last].valid && sim[last].valid)) --last;
+  e.final_position = (sim[last].centre - rec[last].centre).norm() / size;
+  e.final_rotation = sim[last].orientation.angularDistance(rec[last].orientation);
+  e.same_rest_face = down_face(sim[last].orientation) == down_face(rec[last].orientation);
+  e.rest_time_recorded = rest_time(recorded.time, rec, size);
+  e.rest_time_simulated = rest_time(recorded.time, sim, size);
+  return e;
+}
+
+std::vector<Recording> simulate_recordings(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
+                                           const std::string& directory, int jobs) {
+  std::vector<std::exception_ptr> failures;
+  std::vector<Recording> out = simulate_parallel(models, recordings, directory, jobs, &failures);
+  for (const std::exception_ptr& f : failures) if (f) std::rethrow_exception(f);
+  return out;
+}
+
+CalibrationResult calibrate(const json& model, const std::vector<Recording>& recordings,
+                            const CalibrationOptions& options) {
+  const std::vector<CalibrationParameter>& params = options.parameters;
+  if (params.empty()) throw InputError("calibration: no parameters to fit");
+  if (recordings.empty()) throw InputError("calibration: no recordings");
+  const bool own_directory = options.work_directory.empty();
+  const std::string directory = own_directory ? make_temporary_directory() : options.work_directory;
+  Evaluator evaluator(model, recordings, options, directory);
+  const std::size_t n = params.size();
+
+  std::vector<double> u0;
+  for (const CalibrationParameter& p : params) u0.push_back(to_scaled(p, p.start));
+  CalibrationResult result;
+  Evaluator::Point start, best;
+  double best_objective = std::numeric_limits<double>::infinity();
+  std::vector<double> best_u = u0;
+  auto objective = [&](const std::vector<double>& u) {
+    Evaluator::Point point = evaluator.evaluate({u}).front();
+    const double ssr = sum_of_squares(point.residuals);
+    if (result.evaluations++ == 0) start = point, result.objective_start = ssr;
+    if (ssr < best_objective) best_objective = ssr, best = point, best_u = u;
+    if (options.progress) options.progress(result.evaluations, ssr);
+    return ssr;
+  };
+  nlopt::opt opt(nlopt_algorithm(options.algorithm), n);
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  opt.set_min_objective(
+      [](const std::vector<double>& u, std::vector<double>&, void* data) {
+        return (*static_cast<decltype(objective)*>(data))(u);
+      },
+      &objective);
+  opt.set_maxeval(options.max_evaluations);
+  opt.set_xtol_abs(options.tolerance);
+  opt.set_initial_step(0.15);  // a seventh of each scaled range: a first move that events can feel
+  std::vector<double> u = u0;
+  double minimum = 0.0;
+  try {
+    opt.optimize(u, minimum);
+  } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
+  }
+  result.objective = best_objective;
+  result.residual_count = static_cast<int>(best.residuals.size());
+  for (std::size_t r = 0; r < recordings.size(); ++r)
+    result.recordings.push_back({recordings[r].path, evaluator.kind(r), start.recording_rms[r], best.recording_rms[r]});
+
+  // Gauss-Newton covariance: central differences of the residual vector in
+  // the scaled coordinates (one-sided at a bound), s^2 (J^T J)^-1 with s^2 the
+  // residual variance. Residuals of neighbouring samples are correlated, so
+  // this is a lower bound on the uncertainty (docs/calibration.md).
+  std::vector<double> standard_error(n, kNaN);
+  const int dof = result.residual_count - static_cast<int>(n);
+  if (options.uncertainty && dof > 0) {
+    const double h = 0.02;  // 2 % of the range: large enough to step over the event noise of the objective
+    std::vector<std::vector<double>> points;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int sign : {1, -1}) {
+        std::vector<double> p = best_u;
+        p[i] = std::clamp(p[i] + sign * h, 0.0, 1.0);
+        points.push_back(p);
+      }
+    const std::vector<Evaluator::Point> evaluated = evaluator.evaluate(points);
+    result.evaluations += static_cast<int>(points.size());
+    Eigen::MatrixXd J(result.residual_count, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double span = points[2 * i][i] - points[2 * i + 1][i];
+      for (int k = 0; k < result.residual_count; ++k)
+        J(k, i) = (evaluated[2 * i].residuals[k] - evaluated[2 * i + 1].residuals[k]) / span;
+    }
+    const Eigen::MatrixXd normal = J.transpose() * J;
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition(normal);
+    const Eigen::MatrixXd covariance = decomposition.pseudoInverse() * (best_objective / dof);
+    const Eigen::VectorXd d = covariance.diagonal().cwiseSqrt();
+    result.correlation = covariance.cwiseQuotient(d * d.transpose());
+    for (std::size_t i = 0; i < n; ++i)
+      standard_error[i] = decomposition.rank() == static_cast<long>(n) ? d[i] * scale_span(params[i])
+                                                                       : std::numeric_limits<double>::infinity();
+  }
+  std::vector<double> values;
+  for (std::size_t i = 0; i < n; ++i) {
+    values.push_back(to_value(params[i], best_u[i]));
+    result.estimates.push_back(estimate(params[i], values.back(), standard_error[i], t_quantile_975(dof)));
+  }
+  result.model = model;
+  // Friction of a model without interfaces: on the first recording's ones
+  // (contact has no mu_s, mu_k).
+  if (!model.contains("interfaces") && recordings.front().nominal.contains("interfaces"))
+    result.model["interfaces"] = recordings.front().nominal["interfaces"];
+  apply_parameters(result.model, params, values);
+  if (own_directory) {
+    std::error_code ignored;
+    fs::remove_all(directory, ignored);
+  }
+  return result;
+}
+
+CalibrationResult average_calibrations(const std::vector<CalibrationResult>& fits, const json& model) {
+  if (fits.empty()) throw InputError("calibration: nothing to average");
+  CalibrationResult average;
+  std::vector<CalibrationParameter> params;
+  std::vector<double> values;
+  const int count = static_cast<int>(fits.size());
+  for (std::size_t i = 0; i < fits.front().estimates.size(); ++i) {
+    const CalibrationParameter& p = fits.front().estimates[i].parameter;
+    double sum = 0.0, squares = 0.0;
+    for (const CalibrationResult& f : fits) {
+      const double v = p.log_scale ? std::log(f.estimates.at(i).value) : f.estimates.at(i).value;
+      sum += v, squares += v * v;
+    }
+    const double mean = sum / count;
+    const double spread = count > 1 ? std::sqrt(std::max(0.0, (squares - count * mean * mean) / (count - 1))) : kNaN;
+    const double value = p.log_scale ? std::exp(mean) : mean;
+    params.push_back(p);
+    values.push_back(value);
+    average.estimates.push_back(estimate(p, value, spread / std::sqrt(count), t_quantile_975(count - 1)));
+  }
+  for (const CalibrationResult& f : fits) {
+    average.objective += f.objective, average.objective_start += f.objective_start;
+    average.residual_count += f.residual_count, average.evaluations += f.evaluations;
+    average.recordings.insert(average.recordings.end(), f.recordings.begin(), f.recordings.end());
+  }
+  average.model = model;
+  apply_parameters(average.model, params, values);
+  return average;
+}
+
+}  // namespace freestand

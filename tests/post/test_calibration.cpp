@@ -1,0 +1,130 @@
+// freestand calibrate on recordings the simulator made with known contact
+// parameters plus noise: the fit must find the parameters again. Also the
+// pose metrics of the cube-toss comparison on an exactly known offset.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "calibration.h"
+#include "freestand/input_error.h"
+#include "synthetic_recording.h"
+#include "temp_dir.h"
+
+namespace freestand {
+namespace {
+
+using nlohmann::json;
+
+// Known parameters of the synthetic recordings.
+const double kStiffness = 2e7;   // N/m^3 per area: the block sinks 0.75 mm at rest, enough for rocking to feel it
+const double kRestitution = 0.3;
+const double kMuS = 0.35, kMuK = 0.25;  // in the recordings; the test fits restitution only
+
+// A 0.2 x 0.2 x 0.6 m, 60 kg block on its corners, released at rest tilted by
+// half its slenderness (alpha = atan(1/3)) about the y axis, pivot on the +x edge.
+json rocking_scenario() {
+  const double b = 0.1, tilt = 0.5 * std::atan(1.0 / 3.0);
+  return {{"bodies", {{{"name", "block"}, {"shape", "box"}, {"half_extents", {b, b, 0.3}}, {"mass", 60.0},
+                       {"position", {b - b * std::cos(tilt), 0.0, b * std::sin(tilt)}},
+                       {"orientation", {std::cos(tilt / 2), 0.0, std::sin(tilt / 2), 0.0}},
+                       {"nodes", {{"layout", "vertices"}}}}}},
+          {"interfaces", {{{"lower", "table"}, {"upper", "block"}, {"mu_s", kMuS}, {"mu_k", kMuK},
+                           {"restitution", kRestitution}}}},
+          {"contact", {{"stiffness", kStiffness}}},
+          {"simulation", {{"duration", 2.0}, {"time_step", 1e-4}, {"output_rate", 200}}}};
+}
+
+// A squat 0.5 x 0.5 x 0.3 m, 100 kg block (it slides, never rocks) on a table
+// sweeping 1 -> 3 Hz at 6 m/s^2: stick, slip both ways, at varying velocity.
+json sliding_scenario() {
+  json s = rocking_scenario();
+  s["bodies"] = {{{"name", "slider"}, {"shape", "box"}, {"half_extents", {0.25, 0.25, 0.15}}, {"mass", 100.0},
+                  {"nodes", {{"layout", "vertices"}}}}};
+  s["interfaces"][0]["upper"] = "slider";
+  s["table_motion"] = {{"x", {{"motion", "sweep"}, {"amplitude", "6 m/s^2"}, {"frequency", 1.0},
+                              {"frequency_end", 3.0}, {"duration", 2.0}}}};
+  return s;
+}
+
+// The model the calibration starts from: same numerics and stiffness.
+json model() { return {{"simulation", {{"time_step", 1e-4}}}, {"contact", {{"stiffness", kStiffness}}}}; }
+
+// Restitution from noisy free rocking, stiffness and friction known. The
+// joint fit of stiffness, restitution, mu_s and mu_k to this rocking record
+// and the sliding one below does NOT recover them (docs/validation.md, last
+// section): stiffness and restitution trade off along a valley of the
+// rocking objective, and the replayed table does not reproduce the sliding
+// record at the true parameters. Tolerance 0.02 on e = 0.3: the per-impact
+// amplitudes carry 0.6 % noise (1 mrad of 0.16 rad), which the Gauss-Newton
+// interval (14 residuals) understates; measured 0.3089.
+TEST(Calibration, RecoversRestitutionFromNoisyFreeRocking) {
+  test::TempDir dir;
+  const MeasurementNoise noise{1e-3, 5e-4, 7};  // 1 mrad on the angles, 0.5 mm on lengths
+  std::vector<Recording> recordings = {synthetic_recording(rocking_scenario(), dir / "rocking", noise)};
+  recordings[0].path = "rocking";
+  ASSERT_EQ(classify_recording(recordings[0]), RecordingKind::kRocking);
+  ASSERT_EQ(classify_recording(synthetic_recording(sliding_scenario(), dir / "sliding", noise)),
+            RecordingKind::kHistory);
+  CalibrationOptions options;
+  options.parameters = {parse_calibration_parameter("restitution:0.05:0.8:0.5")};
+  options.max_evaluations = 25;
+  options.work_directory = dir / "runs";
+  const CalibrationResult fit = calibrate(model(), recordings, options);
+  EXPECT_NEAR(fit.estimates[0].value, kRestitution, 0.02);
+  EXPECT_TRUE(std::isfinite(fit.estimates[0].standard_error));
+  EXPECT_LT(fit.objective, 0.01 * fit.objective_start);  // the mismatch at the start was real
+  EXPECT_NEAR(fit.model["interfaces"][0]["restitution"].get<double>(), fit.estimates[0].value, 1e-12);
+}
+
+// The pose metrics on a trajectory displaced by a known amount: a recording
+// against itself shifted by 0.01 m in x and turned by 0.2 rad about z.
+TEST(Calibration, TrajectoryErrorsOfAKnownOffset) {
+  Recording rec;
+  rec.nominal = {{"bodies", {{{"name", "cube"}, {"shape", "box"}, {"half_extents", {0.05, 0.05, 0.05}}}}}};
+  rec.time = {0.0, 0.1, 0.2, 0.3};
+  const std::vector<double> x = {0.0, 0.1, 0.15, 0.15};
+  rec.channels = {{"cube.x", x}, {"cube.y", {0, 0, 0, 0}}, {"cube.z", {0.05, 0.05, 0.05, 0.05}},
+                  {"cube.qw", {1, 1, 1, 1}}, {"cube.qx", {0, 0, 0, 0}}, {"cube.qy", {0, 0, 0, 0}},
+                  {"cube.qz", {0, 0, 0, 0}}};
+  Recording sim = rec;
+  for (double& v : sim.channels[0].values) v += 0.01;
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()));
+  sim.channels[3].values.assign(4, turn.w());
+  sim.channels[6].values.assign(4, turn.z());
+  EXPECT_DOUBLE_EQ(body_size(rec, "cube"), 0.1);
+  const TrajectoryErrors e = trajectory_errors(rec, sim, "cube", 0.1);
+  EXPECT_NEAR(e.mean_position, 0.1, 1e-12);
+  EXPECT_NEAR(e.final_position, 0.1, 1e-12);
+  EXPECT_NEAR(e.final_rotation, 0.2, 1e-12);
+  EXPECT_TRUE(e.same_rest_face);  // a turn about the vertical keeps the face down
+  EXPECT_DOUBLE_EQ(e.rest_time_recorded, 0.2);  // x stops changing at 0.2 s
+  const std::vector<double> r = calibration_residuals(RecordingKind::kTrajectory, rec, sim);
+  ASSERT_EQ(r.size(), 4u * 6u);
+  EXPECT_NEAR(r[0], 0.1, 1e-12);  // x offset / size
+  EXPECT_NEAR(r[5], 0.5 * -0.2, 1e-12);  // rotation vector of R_sim^T R_rec, times size/2 over size
+}
+
+TEST(Calibration, ParameterErrorsNameTheParameter) {
+  EXPECT_THROW(parse_calibration_parameter("stifness"), InputError);
+  EXPECT_THROW(parse_calibration_parameter("mu:0.5:0.2"), InputError);
+  EXPECT_THROW(parse_calibration_parameter("stiffness:0:1e9"), InputError);
+  try {
+    parse_calibration_parameter("restitution:0.1");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("restitution:0.1"), std::string::npos);
+  }
+}
+
+TEST(Calibration, KineticFrictionIsCappedAtStatic) {
+  json doc = {{"interfaces", {{{"lower", "table"}, {"upper", "b"}, {"mu", 0.4}}}}};
+  apply_parameters(doc, {parse_calibration_parameter("mu_k")}, {0.6});
+  EXPECT_DOUBLE_EQ(doc["interfaces"][0]["mu_s"].get<double>(), 0.4);  // kept from mu
+  EXPECT_DOUBLE_EQ(doc["interfaces"][0]["mu_k"].get<double>(), 0.4);  // capped
+  EXPECT_FALSE(doc["interfaces"][0].contains("mu"));
+}
+
+}  // namespace
+}  // namespace freestand
