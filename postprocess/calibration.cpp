@@ -1,5 +1,7 @@
 #include "calibration.h"
 
+#include "signal_tools.h"
+
 #include <fmt/format.h>
 #include <stdlib.h>
 
@@ -48,12 +50,9 @@ const CalibrationParameter kKnownParameters[] = {
     {"table_height", -0.01, 0.01, 0.0, false},  // m
 };
 
+// y at `at` by linear interpolation, held at the end values outside the samples.
 double linear_interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
-  if (at <= t.front()) return y.front();
-  if (at >= t.back()) return y.back();
-  const std::size_t i = std::upper_bound(t.begin(), t.end(), at) - t.begin();
-  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
-  return y[i - 1] + w * (y[i] - y[i - 1]);
+  return signal::interpolate(t, y, std::clamp(at, t.front(), t.back()));
 }
 
 // A body's pose at time `at`: centre linearly, orientation by slerp.
