@@ -363,22 +363,29 @@ Overturn detect_overturn(const BodyMotion& motion, const BodyGeometry& geometry,
   Rates rates[2];
   for (int axis = 0; axis < 2; ++axis)
     rates[axis] = rates_of(motion, rock[axis], motion.rates[kRockX + axis], p.angle_noise, p);
+  // Overturning is a transition: a criterion counts only after a sample that
+  // did not meet it (a body released beyond alpha, or tossed and tumbling, is
+  // not "overturned" at its first sample).
   Overturn out;
+  bool stood[2] = {false, false}, upright = false;
   for (std::size_t i = 0; i < motion.time.size(); ++i) {
     for (int axis = 0; axis < 2; ++axis) {
       if (!geometry.known(axis)) continue;
       const double theta = rock[axis][i];
       const bool beyond = std::fabs(theta) > geometry.slenderness(axis) + p.overturn_margin;
       const bool growing = sign(theta) * rates[axis].value[i] > p.threshold_sigmas * rates[axis].sd[i];
-      if (beyond && growing) {
+      if (beyond && growing && stood[axis]) {
         out = {true, motion.time[i], fmt::format("{} beyond alpha + margin and growing", axis ? "rock_y" : "rock_x")};
         return out;
       }
+      stood[axis] = stood[axis] || !beyond;
     }
-    if (tilt(rock[0][i], rock[1][i]) >= M_PI / 2 - p.overturn_margin) {
+    const bool lying = tilt(rock[0][i], rock[1][i]) >= M_PI / 2 - p.overturn_margin;
+    if (lying && upright) {
       out = {true, motion.time[i], "lying on a side"};
       return out;
     }
+    upright = upright || !lying;
   }
   return out;
 }
