@@ -50,15 +50,8 @@ const ComparedBody* compared(const ReportData& data, const std::string& body) {
   return nullptr;
 }
 
-// A channel moved when its peak exceeds what the analysis resolves
-// (threshold_sigmas x noise), in the simulation or the recording.
 bool moved(const AnalysedBody& sim, const ComparedBody* rec, int channel, const analysis::AnalysisParameters& p) {
-  const double resolution = p.threshold_sigmas * (is_angle(channel) ? p.angle_noise : p.length_noise);
-  const auto above = [&](const AnalysedBody& b) {
-    const double m = b.summary.peaks[channel].magnitude();
-    return std::isfinite(m) && m > resolution;
-  };
-  return above(sim) || (rec && !rec->recorded.motion.channels[channel].empty() && above(rec->recorded));
+  return rec ? channel_moved(*rec, channel, p) : channel_moved(sim, channel, p);
 }
 
 std::string describe_metadata(const std::string& text) { return text.empty() ? "n/a" : text; }
@@ -389,7 +382,9 @@ void add_error_table(HtmlReport& report, const RunComparison& run) {
   std::vector<std::string> header{"body", "channel", "unit", "samples"};
   for (const Metric& m : error_metrics())
     header.push_back(std::string(m.heading) + (*m.unit ? fmt::format(" ({})", m.unit) : ""));
-  Table table{"Errors per body and channel. Highlighted: the channel of each body that diverges first.", header, {}};
+  Table table{"Errors per body and channel (channels that moved beyond the analysis' resolution in the simulation "
+              "or the recording). Highlighted: the channel of each body that diverges first.",
+              header, {}};
   std::vector<std::string> firsts;
   for (const ComparedBody& b : run.bodies) {
     const int first = first_divergence(b.comparison);
@@ -398,7 +393,7 @@ void add_error_table(HtmlReport& report, const RunComparison& run) {
                                    b.comparison.channels[first].divergence_time));
     for (int c = 0; c < kChannelCount; ++c) {
       const comparison::ChannelComparison& cc = b.comparison.channels[c];
-      if (cc.samples == 0) continue;
+      if (cc.samples == 0 || !channel_moved(b, c, run.parameters)) continue;
       std::vector<TableCell> row{text_cell(b.simulated.name), text_cell(channel_name(c)), text_cell(display_unit(c)),
                                  count_cell(cc.samples)};
       for (const Metric& m : error_metrics()) {

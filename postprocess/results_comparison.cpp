@@ -53,6 +53,16 @@ const std::vector<Metric>& error_metrics() {
   return metrics;
 }
 
+bool channel_moved(const AnalysedBody& body, int channel, const analysis::AnalysisParameters& p) {
+  const double noise = channel <= analysis::kTwist ? p.angle_noise : p.length_noise;
+  const double peak = body.summary.peaks[channel].magnitude();
+  return !body.motion.channels[channel].empty() && std::isfinite(peak) && peak > p.threshold_sigmas * noise;
+}
+
+bool channel_moved(const ComparedBody& body, int channel, const analysis::AnalysisParameters& p) {
+  return channel_moved(body.simulated, channel, p) || channel_moved(body.recorded, channel, p);
+}
+
 int first_divergence(const comparison::BodyComparison& comparison) {
   int first = -1;
   for (int c = 0; c < analysis::kChannelCount; ++c) {

@@ -44,6 +44,12 @@ struct Metric {
 // recorded), divergence time, time offset, gain, correlation.
 const std::vector<Metric>& error_metrics();
 
+// A channel moved when its peak exceeds what the analysis resolves
+// (threshold_sigmas x the noise of its kind); an unmeasured channel did not.
+bool channel_moved(const AnalysedBody& body, int channel, const analysis::AnalysisParameters& parameters);
+// In the simulation or the recording.
+bool channel_moved(const ComparedBody& body, int channel, const analysis::AnalysisParameters& parameters);
+
 // The channel of a body that diverges first (smallest divergence time), or -1.
 int first_divergence(const comparison::BodyComparison& comparison);
 

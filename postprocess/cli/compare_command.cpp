@@ -32,7 +32,7 @@ void print_errors(const RunComparison& run) {
     const int first = first_divergence(b.comparison);
     for (int c = 0; c < analysis::kChannelCount; ++c) {
       const comparison::ChannelComparison& cc = b.comparison.channels[c];
-      if (cc.samples == 0) continue;
+      if (cc.samples == 0 || !channel_moved(b, c, run.parameters)) continue;
       fmt::print("  {:<16} {:<8} {:>7}", b.simulated.name, channel_names()[c], cc.samples);
       for (const Metric& m : error_metrics()) {
         const double scale = m.in_channel_units && c >= analysis::kSlideX ? 1e3 : 1.0;  // lengths in mm
@@ -42,7 +42,8 @@ void print_errors(const RunComparison& run) {
       fmt::print("\n");
     }
   }
-  fmt::print("  * first divergence of the body; nan: not defined (no divergence, no spectrum peak)\n");
+  fmt::print("  * first divergence of the body; nan: not defined (no divergence, no spectrum peak); channels that stay\n"
+             "    within the analysis' resolution in both are left out (the JSON has them)\n");
 }
 
 int compare(const CompareOptions& o) {

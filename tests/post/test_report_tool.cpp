@@ -5,11 +5,15 @@
 // report, rendered by headless Chromium, must show every plot with the
 // recording overlaid and its lost samples as a gap; a recording naming a
 // body the results lack must be refused, naming it.
+//
+// FREESTAND_REPORT_EXAMPLE_DIR=DIR keeps the report and its screenshot in DIR
+// as report-run.html and report-run.png (docs/report.md).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -238,6 +242,10 @@ TEST_F(ReportTool, ReportWithRecordingShowsEveryPlotInChromium) {
   const fs::path png = dir_->path() / "report.png";
   const std::string failure = chromium_screenshot(html, png, dir_->path(), 1200, 14000);
   ASSERT_TRUE(failure.empty()) << failure;
+  if (const char* keep = std::getenv("FREESTAND_REPORT_EXAMPLE_DIR")) {  // docs/report.md
+    fs::copy_file(html, fs::path(keep) / "report-run.html", fs::copy_options::overwrite_existing);
+    fs::copy_file(png, fs::path(keep) / "report-run.png", fs::copy_options::overwrite_existing);
+  }
   const Screenshot shot(png);
   const std::vector<Box> frames = find_frames(shot);
   ASSERT_EQ(frames.size(), titles.size()) << "one frame per plot expected (page longer than the screenshot?)";
