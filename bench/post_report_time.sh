@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 tool="$root/build/freestand"
 repeats=${1:-3}
 dir=${2:-$(mktemp -d)}
-[ -f "$dir/results.h5" ] || "$tool" run "$root/inputs/scenarios/statue_pedestal_duzce.json" -o "$dir" --no-post > /dev/null
+[ -f "$dir/results.h5" ] || "$tool" run "$root/inputs/scenarios/statue_pedestal_duzce.json" -o "$dir" --no-post > /dev/null 2>&1
 seconds() { local start; start=$(date +%s.%N); "$@" > /dev/null; awk -v s="$start" -v e="$(date +%s.%N)" 'BEGIN{print e - s}'; }
 for _ in $(seq "$repeats"); do
   echo "$(seconds "$tool" post "$dir/results.h5") $(seconds "$tool" report "$dir/results.h5")"
