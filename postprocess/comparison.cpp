@@ -33,12 +33,13 @@ double parabola_vertex(double left, double centre, double right) {
   return curvature < 0 ? 0.5 * (left - right) / curvature : 0.0;
 }
 
-// Pearson correlation of r[k] with s[k - lag] over the overlap.
+// Pearson correlation of r[k] with s[k - lag] over the overlap (finite pairs).
 double lagged_correlation(const std::vector<double>& r, const std::vector<double>& s, long lag) {
   double sr = 0, ss = 0, srr = 0, sss = 0, srs = 0;
   long count = 0;
   for (long k = std::max(0L, lag); k < static_cast<long>(r.size()) && k - lag < static_cast<long>(s.size()); ++k) {
     const double a = r[k], b = s[k - lag];
+    if (!std::isfinite(a) || !std::isfinite(b)) continue;
     sr += a, ss += b, srr += a * a, sss += b * b, srs += a * b;
     ++count;
   }
@@ -47,7 +48,9 @@ double lagged_correlation(const std::vector<double>& r, const std::vector<double
 }
 
 // Both series on one uniform grid (the recording's median step) over the
-// interval where both have finite samples.
+// interval where both have finite samples. The recording is NaN inside its
+// gaps (compared samples more than 1.5 steps apart): a line bridging a lost
+// stretch of rocking would pull the correlation's peak.
 struct UniformPair {
   double t0 = 0, dt = 0;
   std::vector<double> recorded, simulated;
@@ -59,6 +62,11 @@ UniformPair uniform_pair(const Aligned& a, const std::vector<double>& simulated_
   pair.t0 = a.time.front();
   const std::size_t n = static_cast<std::size_t>(std::floor((a.time.back() - pair.t0) / pair.dt)) + 1;
   pair.recorded = signal::resample_uniform(a.time, a.recorded, pair.t0, pair.dt, n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto after = std::upper_bound(a.time.begin(), a.time.end(), pair.t0 + k * pair.dt);
+    if (after != a.time.begin() && after != a.time.end() && *after - *(after - 1) > 1.5 * pair.dt)
+      pair.recorded[k] = kNaN;
+  }
   pair.simulated = signal::resample_uniform(simulated_time, simulated, pair.t0, pair.dt, n);
   return pair;
 }

@@ -20,6 +20,7 @@ constexpr double kLegendRow = 18;
 constexpr double kSwatch = 24;         // legend swatch width
 constexpr double kLabelBand = 14;      // room above the frame for window/marker labels
 constexpr double kColourBar = 84;      // room right of the frame for the colour bar
+constexpr double kTimelineRow = 22;    // height of a timeline row
 constexpr int kTimeColours = 64;       // colour steps of a path coloured by time
 constexpr const char* kGridColour = "#DDDDDD";
 constexpr const char* kZeroColour = "#A0A0A0";
@@ -142,10 +143,11 @@ void append_path(fmt::memory_buffer& out, const Polyline& line) {
 class Canvas {
  public:
   Canvas(Size size, const std::string& title, const Axis& x_axis, const Axis& y_axis, Ticks x,
-         Ticks y, const std::vector<LegendItem>& legend, bool label_band, double right_extra)
-      : size_(size), x_(std::move(x)), y_(std::move(y)) {
+         Ticks y, const std::vector<LegendItem>& legend, bool label_band, double right_extra,
+         std::vector<std::string> y_categories = {})
+      : size_(size), x_(std::move(x)), y_(std::move(y)), y_categories_(std::move(y_categories)) {
     double widest = 0;
-    for (double v : y_.values) widest = std::max(widest, text_width(tick_label(v, y_.step), kFontSize));
+    for (double v : y_.values) widest = std::max(widest, text_width(y_label(v), kFontSize));
     left_ = std::ceil(22 + 8 + widest + 8);
     right_ = size_.width - 16 - right_extra;
     top_ = (title.empty() ? 8 : 30) + legend_rows(legend) * kLegendRow + (label_band ? kLabelBand : 0) + 6;
@@ -164,6 +166,10 @@ class Canvas {
   double bottom() const { return bottom_; }
   int columns() const { return static_cast<int>(std::lround(right_ - left_)); }
   const Ticks& x_ticks() const { return x_; }
+  // Text of the y tick at v: its number, or the category at index v.
+  std::string y_label(double v) const {
+    return y_categories_.empty() ? tick_label(v, y_.step) : y_categories_.at(static_cast<std::size_t>(v));
+  }
 
   // Under the data (shading), clipped.
   void add_background(const std::string& markup) { background_ += markup; }
@@ -227,14 +233,14 @@ class Canvas {
     }
     for (double v : y_.values) {
       const double y = std::round(py(v)) + 0.5;
-      const bool zero = v == 0 && y_.lo < 0 && y_.hi > 0;
+      const bool zero = v == 0 && y_.lo < 0 && y_.hi > 0 && y_categories_.empty();
       fmt::format_to(out,
                      "<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" "
                      "shape-rendering=\"crispEdges\"/><line x1=\"{4}\" y1=\"{1}\" x2=\"{0}\" "
                      "y2=\"{1}\" stroke=\"{5}\" shape-rendering=\"crispEdges\"/>"
                      "<text x=\"{6}\" y=\"{7}\" text-anchor=\"end\">{8}</text>",
                      left_, y, right_, zero ? kZeroColour : kGridColour, left_ - 5, kFrameColour,
-                     left_ - 8, y + 4, tick_label(v, y_.step));
+                     left_ - 8, y + 4, escape(y_label(v)));
     }
     fmt::format_to(out, "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
                    (left_ + right_) / 2, bottom_ + 38, escape(axis_title(x_axis)));
@@ -245,6 +251,7 @@ class Canvas {
 
   Size size_;
   Ticks x_, y_;
+  std::vector<std::string> y_categories_;  // y tick labels by index (category axis); empty: numbers
   double left_ = 0, right_ = 0, top_ = 0, bottom_ = 0;
   std::string decorations_, background_, data_, foreground_;
 };
@@ -591,6 +598,34 @@ std::string render(const PointPlot& plot) {
     for (const Polyline& line : lines)
       for (const auto& [px, py] : line) markers += point_marker(static_cast<int>(i), px, py, colour);
     canvas.add_data(markers);
+  }
+  return canvas.finish();
+}
+
+std::string render(const TimelinePlot& plot) {
+  const int rows = static_cast<int>(plot.rows.size());
+  std::vector<double> ends;
+  std::vector<std::string> labels(plot.rows.size());
+  for (int r = 0; r < rows; ++r) {
+    labels[rows - 1 - r] = plot.rows[r].label;  // first row on top: the highest tick
+    for (const auto& [start, end] : plot.rows[r].spans) ends.insert(ends.end(), {start, end});
+  }
+  Ticks y{-0.5, rows - 0.5, 1, {}};
+  for (int r = 0; r < rows; ++r) y.values.push_back(r);
+  const Size size{plot.width, static_cast<int>(std::ceil((plot.title.empty() ? 8 : 30) + 6 + 46 +
+                                                         std::max(rows, 3) * kTimelineRow))};
+  Canvas canvas(size, plot.title, plot.x, {}, axis_ticks(plot.x, data_range({}, true, ends), 10, false), y, {},
+                false, 0, labels);
+  const double bar = 0.7 * kTimelineRow;
+  for (int r = 0; r < rows; ++r) {
+    const TimelineRow& row = plot.rows[r];
+    const std::string& colour = row.colour.empty() ? palette()[r % palette().size()] : row.colour;
+    fmt::memory_buffer bars;
+    for (const auto& [start, end] : row.spans)  // at least a pixel wide, so short spans show
+      fmt::format_to(std::back_inserter(bars), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/>",
+                     canvas.px(start), canvas.py(rows - 1 - r) - bar / 2,
+                     std::max(1.0, canvas.px(end) - canvas.px(start)), bar);
+    canvas.add_data(fmt::format("<g fill=\"{}\">{}</g>", colour, fmt::to_string(bars)));
   }
   return canvas.finish();
 }

@@ -86,7 +86,22 @@ struct PointPlot {
   Size size{620, 340};
 };
 
+// Categories against x, one row each with bars where the category holds, e.g.
+// a body's modes of motion over time (a Gantt chart).
+struct TimelineRow {
+  std::string label;
+  std::vector<std::pair<double, double>> spans;  // [start, end] intervals of x
+  std::string colour;                            // bar colour; empty: palette()[row]
+};
+struct TimelinePlot {
+  std::string title;
+  Axis x;
+  std::vector<TimelineRow> rows;  // top to bottom
+  int width = 880;                // the height follows from the number of rows
+};
+
 std::string render(const LinePlot& plot);
+std::string render(const TimelinePlot& plot);
 std::string render(const TrajectoryPlot& plot);
 std::string render(const PointPlot& plot);
 

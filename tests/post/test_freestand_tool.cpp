@@ -14,6 +14,7 @@
 
 #include "recording.h"
 #include "results.h"
+#include "run_command.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -30,14 +31,7 @@ const char* const kFreeRocking = R"({
   "simulation": {"duration": 0.4, "output_rate": 2000}
 })";
 
-// Runs a shell command; returns its exit status and what it printed.
-int run(const std::string& command, std::string* output) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) *output += buffer.data();
-  const int status = pclose(pipe);
-  return WEXITSTATUS(status);
-}
+using freestand::test::run;
 
 std::string file_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -9,14 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
-#include <vtkUnsignedCharArray.h>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -24,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "chromium_screenshot.h"
 #include "html_report.h"
 #include "svg_plot.h"
 
@@ -31,6 +25,7 @@ namespace freestand {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace freestand::test;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Synthetic signals. Rocking: a decaying oscillation, 20 s at 1 kHz; the
@@ -110,127 +105,10 @@ HtmlReport synthetic_report() {
   return report;
 }
 
-struct Rgb {
-  double r, g, b;
-};
-
-Rgb parse_colour(const std::string& hex) {
-  const long v = std::stol(hex.substr(1), nullptr, 16);
-  return {double((v >> 16) & 255), double((v >> 8) & 255), double(v & 255)};
-}
-
-class Screenshot {
- public:
-  explicit Screenshot(const fs::path& png) {
-    vtkNew<vtkPNGReader> reader;
-    reader->SetFileName(png.c_str());
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    width_ = dims[0], height_ = dims[1];
-    auto* scalars = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
-    if (!scalars) return;
-    const int components = scalars->GetNumberOfComponents();
-    pixels_.resize(std::size_t(width_) * height_);
-    for (int y = 0; y < height_; ++y)
-      for (int x = 0; x < width_; ++x) {
-        const unsigned char* p = scalars->GetPointer(
-            (std::size_t(height_ - 1 - y) * width_ + x) * components);  // VTK rows run bottom-up
-        pixels_[std::size_t(y) * width_ + x] = {double(p[0]), double(p[1]), double(p[2])};
-      }
-  }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  const Rgb& at(int x, int y) const { return pixels_[std::size_t(y) * width_ + x]; }
-
- private:
-  int width_ = 0, height_ = 0;
-  std::vector<Rgb> pixels_;
-};
-
-// Pixel drawn in `c` on white, allowing for anti-aliasing: it lies on the
-// white-to-c line at least 60 % of the way to c, within 30 levels of it.
-bool shows(const Rgb& p, const Rgb& c) {
-  const double dr = c.r - 255, dg = c.g - 255, db = c.b - 255;
-  const double a = ((p.r - 255) * dr + (p.g - 255) * dg + (p.b - 255) * db) / (dr * dr + dg * dg + db * db);
-  const double er = p.r - 255 - a * dr, eg = p.g - 255 - a * dg, eb = p.b - 255 - a * db;
-  return a >= 0.6 && std::sqrt(er * er + eg * eg + eb * eb) <= 30;
-}
-
-bool near(const Rgb& p, const Rgb& c, double tolerance) {
-  return std::abs(p.r - c.r) <= tolerance && std::abs(p.g - c.g) <= tolerance && std::abs(p.b - c.b) <= tolerance;
-}
-
-struct Box {
-  int left, top, right, bottom;  // frame pixels, inclusive
-};
-
-// Plot frames: horizontal runs of the frame colour at least 200 px long,
-// paired top and bottom by their extent (only frames are drawn in that colour).
-std::vector<Box> find_frames(const Screenshot& shot) {
-  const Rgb frame = parse_colour(svg::kFrameColour);
-  struct Run {
-    int y, x0, x1;
-  };
-  std::vector<Run> runs;
-  for (int y = 0; y < shot.height(); ++y)
-    for (int x = 0; x < shot.width();) {
-      int end = x;
-      while (end < shot.width() && near(shot.at(end, y), frame, 8)) ++end;
-      if (end - x >= 200) runs.push_back({y, x, end - 1});
-      x = std::max(end, x + 1);
-    }
-  std::vector<Box> boxes;
-  std::vector<bool> used(runs.size(), false);
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (used[i]) continue;
-    for (std::size_t j = i + 1; j < runs.size(); ++j)
-      if (!used[j] && std::abs(runs[j].x0 - runs[i].x0) <= 1 && std::abs(runs[j].x1 - runs[i].x1) <= 1 &&
-          runs[j].y - runs[i].y > 50) {
-        boxes.push_back({runs[i].x0, runs[i].y, runs[i].x1, runs[j].y});
-        used[i] = used[j] = true;
-        break;
-      }
-  }
-  return boxes;
-}
-
-// Fraction of the 20-pixel-wide slices of the frame, between data x values
-// [from, to] of an axis running from 0 at the left edge to `span` at the
-// right, that show colour c. Slices, not single columns: where two lines
-// cross, the one drawn last hides the other for a few columns.
-double slices_showing(const Screenshot& shot, const Box& box, const Rgb& c, double from, double to, double span) {
-  constexpr int kSlice = 20;
-  const double width = box.right - box.left + 1;
-  const int x0 = box.left + 1 + static_cast<int>(std::ceil(from / span * width));
-  const int x1 = box.left - 1 + static_cast<int>(std::floor(to / span * width));
-  int slices = 0, hits = 0;
-  for (int start = x0; start + kSlice - 1 <= x1; start += kSlice, ++slices) {
-    bool hit = false;
-    for (int x = start; x < start + kSlice && !hit; ++x)
-      for (int y = box.top + 1; y < box.bottom && !hit; ++y) hit = shows(shot.at(x, y), c);
-    hits += hit;
-  }
-  return slices ? double(hits) / slices : 0;
-}
-
-// Pixels inside the frame, between data x values [from, to] (as above), showing c.
-int pixels_showing(const Screenshot& shot, const Box& box, const Rgb& c, double from = 0, double to = 1,
-                   double span = 1) {
-  const double width = box.right - box.left + 1;
-  const int x0 = box.left + 1 + static_cast<int>(std::ceil(from / span * width));
-  const int x1 = std::min(box.right - 1, box.left - 1 + static_cast<int>(std::floor(to / span * width)));
-  int hits = 0;
-  for (int y = box.top + 1; y < box.bottom; ++y)
-    for (int x = x0; x <= x1; ++x) hits += shows(shot.at(x, y), c);
-  return hits;
-}
-
 class ReportInChromium : public testing::Test {
  protected:
   void SetUp() override {
-    if (std::system("command -v chromium > /dev/null 2>&1") != 0)
+    if (!chromium_installed())
       GTEST_SKIP() << "chromium is not installed (Debian package 'chromium'; scripts/setup.sh installs it)";
     dir_ = fs::temp_directory_path() / ("freestand_report_chromium_" + std::to_string(getpid()));
     fs::create_directories(dir_);
@@ -242,17 +120,10 @@ class ReportInChromium : public testing::Test {
 };
 
 TEST_F(ReportInChromium, ScreenshotShowsEveryPlot) {
-  const fs::path html = dir_ / "report.html", png = dir_ / "screenshot.png", log = dir_ / "chromium.log";
+  const fs::path html = dir_ / "report.html", png = dir_ / "screenshot.png";
   synthetic_report().write(html.string());
-  // --headless is Chromium's new headless mode (the old one is gone since
-  // Chromium 132). No sandbox: CI runs as root. A private profile keeps HOME untouched.
-  const std::string command =
-      "timeout 60 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
-      "--force-device-scale-factor=1 --no-first-run --user-data-dir='" + (dir_ / "profile").string() +
-      "' --window-size=1200,3000 --screenshot='" + png.string() + "' 'file://" + html.string() + "' > '" +
-      log.string() + "' 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << "chromium failed, see " << log;
-  ASSERT_TRUE(fs::exists(png)) << "no screenshot, see " << log;
+  const std::string failure = chromium_screenshot(html, png, dir_, 1200, 3000);
+  ASSERT_TRUE(failure.empty()) << failure;
   if (const char* keep = std::getenv("FREESTAND_REPORT_EXAMPLE_DIR")) {
     fs::copy_file(html, fs::path(keep) / "report-example.html", fs::copy_options::overwrite_existing);
     fs::copy_file(png, fs::path(keep) / "report-example.png", fs::copy_options::overwrite_existing);

@@ -241,5 +241,24 @@ TEST(PointPlot, IntegerTicksForImpactNumbers) {
   EXPECT_NE(svg.find(">Housner<"), std::string::npos);
 }
 
+TEST(TimelinePlot, RowsAreLabelledCategoriesWithBarsWhereTheyHold) {
+  TimelinePlot plot;
+  plot.title = "Modes";
+  plot.x = {"t", "s", 0.0, 10.0};
+  plot.rows = {{"rest", {{0, 4}, {6, 10}}, "#A0A0A0"}, {"rock & slide", {{4, 6}, {5, 5.0001}}, ""}};
+  const std::string svg = render(plot);
+  EXPECT_NE(svg.find(">rest<"), std::string::npos);
+  EXPECT_NE(svg.find(">rock &amp; slide<"), std::string::npos);  // category labels replace numbers, escaped
+  const std::regex bar(R"re(<rect x="[0-9.]+" y="[0-9.]+" width="([0-9.]+)" height="[0-9.]+"/>)re");
+  std::vector<double> widths;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), bar); it != std::sregex_iterator(); ++it)
+    widths.push_back(std::stod((*it)[1]));
+  ASSERT_EQ(widths.size(), 4u);
+  EXPECT_NEAR(widths[0] / widths[2], 2.0, 0.01);  // 4 s against 2 s
+  EXPECT_EQ(widths[3], 1.0);                       // a 0.1 ms span still shows, a pixel wide
+  EXPECT_NE(svg.find("fill=\"#A0A0A0\""), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"" + palette()[1] + "\""), std::string::npos);  // no colour: the row's palette colour
+}
+
 }  // namespace
 }  // namespace freestand::svg
