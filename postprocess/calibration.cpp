@@ -705,15 +705,24 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
         return (*static_cast<decltype(objective)*>(data))(u);
       },
       &objective);
-  opt.set_maxeval(options.max_evaluations);
   opt.set_xtol_abs(options.tolerance);
-  opt.set_initial_step(0.15);  // a seventh of each scaled range: a first move that events can feel
-  std::vector<double> u = u0;
-  double minimum = 0.0;
-  try {
-    opt.optimize(u, minimum);
-  } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
-  }
+  // A trust region that shrank along a narrow curved valley (stiffness
+  // against restitution in free rocking) stops short of the minimum:
+  // restart from the best point with a fresh region while evaluations remain
+  // and a restart still improves the objective.
+  double step = 0.15, previous = 0.0;  // first a seventh of each scaled range: a move that events can feel
+  do {
+    previous = best_objective;
+    opt.set_maxeval(options.max_evaluations - result.evaluations);
+    opt.set_initial_step(step);
+    std::vector<double> u = best_u;
+    double minimum = 0.0;
+    try {
+      opt.optimize(u, minimum);
+    } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
+    }
+    step = 0.05;
+  } while (result.evaluations < options.max_evaluations && best_objective < previous);
   result.objective = best_objective;
   result.residual_count = static_cast<int>(best.residuals.size());
   for (std::size_t r = 0; r < recordings.size(); ++r)
