@@ -33,8 +33,8 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A failed simulation gives every residual this value: an order of magnitude
-// beyond any residual of a model that ran, so the optimiser moves away.
+// A failed simulation gives every residual this many times the largest
+// residual of a model that ran (at least 1), so the optimiser moves away.
 const double kFailedResidual = 10.0;
 
 
@@ -99,30 +99,52 @@ std::vector<std::size_t> spread_samples(std::size_t size, std::size_t count) {
 
 // Free rocking reduced to its impacts: an impact is a change of sign of the
 // rock angle confirmed by the angle passing `hysteresis` on the other side
-// (so noise near zero does not count), timed at the zero crossing; the
-// amplitude of a half-cycle is its largest |angle|.
+// (so noise near zero does not count). Both features are read from local
+// least-squares fits rather than single samples, so that they resolve below
+// the sampling step and measurement noise does not bias them: the impact time
+// is the zero of a line through the 2 + 2 samples around the crossing, the
+// amplitude of a half-cycle the vertex of a parabola through the 5 samples
+// around its largest |angle| (the largest noisy sample overestimates it by
+// about one noise deviation).
 struct RockingFeatures {
   std::vector<double> impact_times, amplitudes;  // amplitudes[i]: half-cycle after impact i
+  std::vector<double> impact_rates;              // |d angle/dt| at impact i (rad/s)
 };
 RockingFeatures rocking_features(const std::vector<double>& t, const std::vector<double>& angle, double hysteresis) {
-  RockingFeatures f;
+  std::vector<std::size_t> crossings, peaks;  // sample after each confirmed crossing; largest |angle| after it
   int side = 0;
-  double crossing = t.front(), peak = 0.0;
+  std::size_t crossing = 0, peak = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     const double a = angle[k];
     if (!std::isfinite(a)) continue;
-    if (k > 0 && std::isfinite(angle[k - 1]) && (a > 0) != (angle[k - 1] > 0))
-      crossing = t[k - 1] + (t[k] - t[k - 1]) * angle[k - 1] / (angle[k - 1] - a);
+    if (k > 0 && std::isfinite(angle[k - 1]) && (a > 0) != (angle[k - 1] > 0)) crossing = k;
     const int now = a > hysteresis ? 1 : a < -hysteresis ? -1 : 0;
     if (now != 0 && side != 0 && now != side) {
-      if (!f.impact_times.empty()) f.amplitudes.push_back(peak);
-      f.impact_times.push_back(crossing);
-      peak = 0.0;
+      if (!crossings.empty()) peaks.push_back(peak);
+      crossings.push_back(crossing);
+      peak = k;
     }
     if (now != 0) side = now;
-    if (!f.impact_times.empty()) peak = std::max(peak, std::abs(a));
+    if (!crossings.empty() && std::abs(a) > std::abs(angle[peak])) peak = k;
   }
-  if (!f.impact_times.empty()) f.amplitudes.push_back(peak);
+  if (!crossings.empty()) peaks.push_back(peak);
+  RockingFeatures f;
+  const std::size_t n = t.size();
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    const std::size_t c = crossings[i], m = peaks[i];
+    const signal::LocalFit line = signal::local_fit(t, angle, {c >= 2 ? c - 2 : 0, std::min(c + 2, n)}, t[c], 1, 0.0);
+    if (!line.valid || line.slope == 0.0 || c == 0) continue;  // a crossing at lost samples: not timed
+    f.impact_times.push_back(t[c] - line.value / line.slope);
+    f.impact_rates.push_back(std::abs(line.slope));
+    const signal::LocalFit top = signal::local_fit(t, angle, {m >= 2 ? m - 2 : 0, std::min(m + 3, n)}, t[m], 2, 0.0);
+    double amplitude = std::abs(angle[m]);
+    if (top.valid && top.curvature * top.value < 0.0) {  // a maximum of |angle|
+      const double shift = -top.slope / top.curvature;   // vertex relative to t[m]
+      if (std::abs(shift) <= t[std::min(m + 1, n - 1)] - t[m > 0 ? m - 1 : 0])  // within the 5 samples
+        amplitude = std::abs(top.value + 0.5 * top.slope * shift);
+    }
+    f.amplitudes.push_back(amplitude);
+  }
   return f;
 }
 
@@ -147,6 +169,28 @@ double peak_abs(const std::vector<double>& v) {
 const int kMaxImpacts = 10;          // impacts compared per recording: later ones are small and noisy
 const std::size_t kHistorySamples = 100;  // samples compared per channel of a history
 
+// The measurement noise a recording's nominal states (sensor_noise: standard
+// deviations of the angles and lengths), 0 where it states none.
+struct SensorNoise {
+  double angle = 0.0, length = 0.0;
+};
+SensorNoise sensor_noise(const Recording& r) {
+  const json noise = r.nominal.value("sensor_noise", json::object());
+  return {noise.value("angle", 0.0), noise.value("length", 0.0)};
+}
+
+// An impact is compared only while the recorded half-cycle after it reaches
+// this many times the detection hysteresis: nearer the threshold, noise or a
+// slightly different simulation makes or misses a half-cycle, and every later
+// impact would be compared with the wrong one.
+const double kComparedAmplitude = 2.0;
+
+// Residuals are divided by the measurement noise of the feature when the
+// recording states its sensor noise sigma (a least-squares fit is then a
+// maximum-likelihood one): a crossing time fitted to 4 samples has the noise
+// of their mean, sigma / 2, over the angular velocity; a 5-sample parabola's
+// vertex sqrt(17/35) sigma = 0.70 sigma. Without stated noise, by the time of
+// the first impact and by the peak angle.
 void rocking_residuals(const Recording& rec, const Recording& sim, const std::string& body,
                        std::vector<double>& out) {
   const std::string channel = rocking_channel(rec, body);
@@ -157,38 +201,49 @@ void rocking_residuals(const Recording& rec, const Recording& sim, const std::st
     throw InputError(fmt::format("{}: body '{}' does not rock ({} never changes sign by more than {:.3g} rad): "
                                  "no impacts to compare", rec.path, body, channel, hysteresis));
   const RockingFeatures simulated = rocking_features(sim.time, sim.body_channel(body, channel), hysteresis);
+  const double noise = sensor_noise(rec).angle;
   const double time_scale = recorded.impact_times.front() - rec.time.front();
-  const std::size_t n = std::min<std::size_t>(recorded.impact_times.size(), kMaxImpacts);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < std::min<std::size_t>(recorded.impact_times.size(), kMaxImpacts); ++i) {
+    if (i > 0 && recorded.amplitudes[i] < kComparedAmplitude * hysteresis) break;
     const bool happened = i < simulated.impact_times.size();
-    out.push_back(((happened ? simulated.impact_times[i] : rec.time.back()) - recorded.impact_times[i]) / time_scale);
-    out.push_back(((happened ? simulated.amplitudes[i] : 0.0) - recorded.amplitudes[i]) / amplitude);
+    out.push_back(((happened ? simulated.impact_times[i] : rec.time.back()) - recorded.impact_times[i]) /
+                  (noise > 0 ? 0.5 * noise / recorded.impact_rates[i] : time_scale));
+    out.push_back(((happened ? simulated.amplitudes[i] : 0.0) - recorded.amplitudes[i]) /
+                  (noise > 0 ? std::sqrt(17.0 / 35.0) * noise : amplitude));
   }
 }
 
+// With stated sensor noise every sample is compared, divided by the noise;
+// without, 100 samples spread over the record, divided by the channel's peak.
 void history_residuals(const Recording& rec, const Recording& sim, const std::string& body,
                        std::vector<double>& out) {
-  const std::vector<std::size_t> samples = spread_samples(rec.time.size(), kHistorySamples);
+  const SensorNoise noise = sensor_noise(rec);
+  const bool weighted = noise.angle > 0 && noise.length > 0;
+  const std::vector<std::size_t> samples =
+      spread_samples(rec.time.size(), weighted ? rec.time.size() : kHistorySamples);
   int compared = 0;
-  for (const char* channel : {"slide_x", "slide_y", "rock_x", "rock_y", "twist"}) {
+  for (const char* channel : {"slide_x", "slide_y", "uplift", "rock_x", "rock_y", "twist"}) {
     const std::vector<double>& recorded = rec.body_channel(body, channel);
-    const double scale = peak_abs(recorded);
-    const bool length = channel[0] == 's';
+    const double peak = peak_abs(recorded);
+    const bool length = channel[0] == 's' || channel[0] == 'u';
     // Below 2 mm or 20 mrad a channel is mostly measurement noise: dividing by
     // its peak would make noise the largest residuals.
-    if (scale < (length ? 2e-3 : 2e-2)) continue;
+    if (peak < (length ? 2e-3 : 2e-2)) continue;
+    const double scale = weighted ? (length ? noise.length : noise.angle) : peak;
     const std::vector<double>& simulated = sim.body_channel(body, channel);
     for (std::size_t k : samples) {
       // A lost recorded sample compares with nothing; a simulation that
       // went non-finite (it blew up) is as bad as one that failed.
       const double s = linear_interpolate(sim.time, simulated, rec.time[k]);
-      out.push_back(!std::isfinite(recorded[k]) ? 0.0 : std::isfinite(s) ? (s - recorded[k]) / scale : kFailedResidual);
+      out.push_back(!std::isfinite(recorded[k]) ? 0.0
+                    : std::isfinite(s)          ? (s - recorded[k]) / scale
+                                                : kFailedResidual * peak / scale);
     }
     ++compared;
   }
   if (compared == 0)
-    throw InputError(fmt::format("{}: body '{}' neither slides (2 mm), rocks nor twists (20 mrad): nothing to compare",
-                                 rec.path, body));
+    throw InputError(fmt::format("{}: body '{}' neither slides, lifts (2 mm), rocks nor twists (20 mrad): "
+                                 "nothing to compare", rec.path, body));
 }
 
 void trajectory_residuals(const Recording& rec, const Recording& sim, const std::string& body,
@@ -327,8 +382,10 @@ class Evaluator {
       for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) {
         std::vector<double> residuals;
         if (!failures[j]) residuals = calibration_residuals(kinds_[r], recordings_[r], simulated[j]);
-        else residuals.assign(residual_counts(r), kFailedResidual), ++failed_runs;
-        if (residual_counts_.size() <= r) residual_counts_.push_back(residuals.size());
+        else residuals.assign(residual_counts(r), kFailedResidual * largest_[r]), ++failed_runs;
+        if (residual_counts_.size() <= r) residual_counts_.push_back(residuals.size()), largest_.push_back(1.0);
+        if (!failures[j])
+          for (double x : residuals) largest_[r] = std::max(largest_[r], std::abs(x));
         points[p].recording_rms.push_back(std::sqrt(sum_of_squares(residuals) / residuals.size()));
         points[p].residuals.insert(points[p].residuals.end(), residuals.begin(), residuals.end());
       }
@@ -337,6 +394,7 @@ class Evaluator {
   }
 
   RecordingKind kind(std::size_t r) const { return kinds_[r]; }
+  std::size_t residual_count(std::size_t r) const { return residual_counts_.at(r); }
   int failed_runs = 0;
 
  private:
@@ -352,8 +410,51 @@ class Evaluator {
   std::vector<RecordingKind> kinds_;
   std::vector<json> bases_;
   std::vector<std::size_t> residual_counts_;
+  std::vector<double> largest_;  // per recording: the largest |residual| of a model that ran (at least 1)
   int batches_ = 0;
 };
+
+// Residuals per sample (or per impact) of a recording kind: the lag at which
+// a residual meets its neighbour in time.
+std::size_t residuals_per_sample(RecordingKind kind) {
+  return kind == RecordingKind::kRocking ? 2 : kind == RecordingKind::kTrajectory ? 6 : 1;
+}
+
+// Residuals of neighbouring samples are correlated when the model misses
+// something systematic (a phase drift, a missed bounce): n such residuals
+// carry the information of fewer independent ones. For an AR(1) sequence
+// with lag-one correlation rho the variance of a mean grows by
+// (1 + rho) / (1 - rho); this factor, from the residuals r[first, last) at the
+// fit (rho clamped to [0, 0.99]), inflates their share of the covariance.
+// White measurement noise gives rho near 0 and no inflation.
+double serial_inflation(const std::vector<double>& r, std::size_t first, std::size_t last, std::size_t lag) {
+  double products = 0.0, squares = 0.0;
+  for (std::size_t k = first; k < last; ++k) {
+    squares += r[k] * r[k];
+    if (k + lag < last) products += r[k] * r[k + lag];
+  }
+  const double rho = squares > 0 ? std::clamp(products / squares, 0.0, 0.99) : 0.0;
+  return (1.0 + rho) / (1.0 - rho);
+}
+
+// cov = s^2 (J^T J)^-1 (sum_r f_r J_r^T J_r) (J^T J)^-1, J_r the rows of
+// recording r and f_r its serial inflation (the sandwich form of a
+// least-squares covariance with residual variance s^2 f_r per recording);
+// all f_r = 1 gives the plain Gauss-Newton s^2 (J^T J)^-1. Pseudo-inverse:
+// a parameter the data do not feel makes `rank` < columns.
+Eigen::MatrixXd sandwich_covariance(const Eigen::MatrixXd& J, const std::vector<double>& inflation,
+                                    const Evaluator& evaluator, double variance, long* rank) {
+  const Eigen::MatrixXd normal = J.transpose() * J;
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(J.cols(), J.cols());
+  for (std::size_t r = 0, first = 0; r < inflation.size(); first += evaluator.residual_count(r++)) {
+    const auto rows = J.middleRows(first, evaluator.residual_count(r));
+    meat += inflation[r] * rows.transpose() * rows;
+  }
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition(normal);
+  *rank = decomposition.rank();
+  const Eigen::MatrixXd inverse = decomposition.pseudoInverse();
+  return variance * inverse * meat * inverse;
+}
 
 nlopt::algorithm nlopt_algorithm(const std::string& name) {
   if (name == "bobyqa") return nlopt::LN_BOBYQA;
@@ -437,7 +538,7 @@ void apply_parameters(json& document, const std::vector<CalibrationParameter>& p
 const char* kind_name(RecordingKind kind) {
   switch (kind) {
     case RecordingKind::kRocking: return "free rocking";
-    case RecordingKind::kHistory: return "moving table";
+    case RecordingKind::kHistory: return "histories";
     case RecordingKind::kTrajectory: return "launched";
   }
   return "";
@@ -457,7 +558,11 @@ RecordingKind classify_recording(const Recording& r) {
                                            body.at("name").get<std::string>(), key));
             return RecordingKind::kTrajectory;
           }
-  return RecordingKind::kRocking;
+  // Released at rest on a fixed table: free rocking if it rocks (20 mrad, the
+  // history threshold), else (dropped face-on, or at rest) its histories.
+  for (const std::string& body : r.body_names())
+    if (peak_abs(r.body_channel(body, rocking_channel(r, body))) >= 2e-2) return RecordingKind::kRocking;
+  return RecordingKind::kHistory;
 }
 
 json recording_scenario(const json& model, const Recording& recording, const std::string& table_file) {
@@ -600,24 +705,32 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
         return (*static_cast<decltype(objective)*>(data))(u);
       },
       &objective);
-  opt.set_maxeval(options.max_evaluations);
   opt.set_xtol_abs(options.tolerance);
-  opt.set_initial_step(0.15);  // a seventh of each scaled range: a first move that events can feel
-  std::vector<double> u = u0;
-  double minimum = 0.0;
-  try {
-    opt.optimize(u, minimum);
-  } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
-  }
+  // A trust region that shrank along a narrow curved valley (stiffness
+  // against restitution in free rocking) stops short of the minimum:
+  // restart from the best point with a fresh region while evaluations remain
+  // and a restart still improves the objective.
+  double step = 0.15, previous = 0.0;  // first a seventh of each scaled range: a move that events can feel
+  do {
+    previous = best_objective;
+    opt.set_maxeval(options.max_evaluations - result.evaluations);
+    opt.set_initial_step(step);
+    std::vector<double> u = best_u;
+    double minimum = 0.0;
+    try {
+      opt.optimize(u, minimum);
+    } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
+    }
+    step = 0.05;
+  } while (result.evaluations < options.max_evaluations && best_objective < previous);
   result.objective = best_objective;
   result.residual_count = static_cast<int>(best.residuals.size());
   for (std::size_t r = 0; r < recordings.size(); ++r)
     result.recordings.push_back({recordings[r].path, evaluator.kind(r), start.recording_rms[r], best.recording_rms[r]});
 
-  // Gauss-Newton covariance: central differences of the residual vector in
-  // the scaled coordinates (one-sided at a bound), s^2 (J^T J)^-1 with s^2 the
-  // residual variance. Residuals of neighbouring samples are correlated, so
-  // this is a lower bound on the uncertainty (docs/calibration.md).
+  // Gauss-Newton covariance from central differences of the residual vector
+  // in the scaled coordinates (one-sided at a bound), inflated for residuals
+  // correlated in time (serial_inflation).
   std::vector<double> standard_error(n, kNaN);
   const int dof = result.residual_count - static_cast<int>(n);
   if (options.uncertainty && dof > 0) {
@@ -637,14 +750,19 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
       for (int k = 0; k < result.residual_count; ++k)
         J(k, i) = (evaluated[2 * i].residuals[k] - evaluated[2 * i + 1].residuals[k]) / span;
     }
-    const Eigen::MatrixXd normal = J.transpose() * J;
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition(normal);
-    const Eigen::MatrixXd covariance = decomposition.pseudoInverse() * (best_objective / dof);
+    std::vector<double> inflation;
+    for (std::size_t r = 0, first = 0; r < recordings.size(); first += evaluator.residual_count(r++)) {
+      inflation.push_back(serial_inflation(best.residuals, first, first + evaluator.residual_count(r),
+                                           residuals_per_sample(evaluator.kind(r))));
+      result.recordings[r].variance_inflation = inflation.back();
+    }
+    long rank = 0;
+    const Eigen::MatrixXd covariance = sandwich_covariance(J, inflation, evaluator, best_objective / dof, &rank);
     const Eigen::VectorXd d = covariance.diagonal().cwiseSqrt();
     result.correlation = covariance.cwiseQuotient(d * d.transpose());
     for (std::size_t i = 0; i < n; ++i)
-      standard_error[i] = decomposition.rank() == static_cast<long>(n) ? d[i] * scale_span(params[i])
-                                                                       : std::numeric_limits<double>::infinity();
+      standard_error[i] = rank == static_cast<long>(n) ? d[i] * scale_span(params[i])
+                                                       : std::numeric_limits<double>::infinity();
   }
   std::vector<double> values;
   for (std::size_t i = 0; i < n; ++i) {

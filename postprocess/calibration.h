@@ -6,7 +6,8 @@
 // values, its recorded channels are reduced to residuals (per-impact features
 // for free rocking, histories for a moving table, the pose for a tossed or
 // launched body), NLopt minimises the sum of squared residuals, and a
-// Gauss-Newton covariance at the optimum gives the uncertainty.
+// Gauss-Newton covariance at the optimum, inflated for residuals correlated
+// in time, gives the uncertainty.
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -42,7 +43,8 @@ void apply_parameters(nlohmann::json& document, const std::vector<CalibrationPar
 // How a recording is compared (docs/calibration.md).
 enum class RecordingKind {
   kRocking,     // fixed table, released at rest: impact times and amplitudes
-  kHistory,     // moving table: histories of the channels that move (slide, rock, twist)
+  kHistory,     // moving table, or a fixed one without rocking (a face-on drop): histories of
+                // the channels that move (slide, uplift, rock, twist)
   kTrajectory,  // fixed table, launched with a velocity: pose (position and rotation)
 };
 RecordingKind classify_recording(const Recording& recording);
@@ -109,6 +111,7 @@ struct RecordingFit {
   std::string path;
   RecordingKind kind = RecordingKind::kRocking;
   double rms_start = 0.0, rms_fitted = 0.0;  // RMS residual at the start and at the fit
+  double variance_inflation = 1.0;  // (1 + rho) / (1 - rho), rho the serial correlation of its residuals at the fit
 };
 
 struct CalibrationResult {

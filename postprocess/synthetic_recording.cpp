@@ -19,6 +19,8 @@ Recording synthetic_recording(const nlohmann::json& document, const std::string&
   }
   for (nlohmann::json& f : recording.nominal["interfaces"])
     for (const char* key : {"mu", "mu_s", "mu_k", "restitution", "contact_stiffness", "friction_decay"}) f.erase(key);
+  if (noise.angle > 0 && noise.length > 0)  // what the experimenter states about the sensors
+    recording.nominal["sensor_noise"] = {{"angle", noise.angle}, {"length", noise.length}};
   recording.nominal["source"] = "synthetic: freestand simulation with known contact parameters plus Gaussian noise";
   recording.nominal["sampling_hz"] = (recording.time.size() - 1) / (recording.time.back() - recording.time.front());
   return recording;

@@ -24,7 +24,7 @@ struct MeasurementNoise {
 // Gaussian noise on the body channels; the table channels are exact (the
 // table's motion is the input). The nominal keeps bodies and interfaces but
 // not the contact parameters (stiffness, restitution, friction), which a
-// calibration has to find.
+// calibration has to find, and states the noise as sensor_noise.
 Recording synthetic_recording(const nlohmann::json& document, const std::string& directory,
                               const MeasurementNoise& noise);
 

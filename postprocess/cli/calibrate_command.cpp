@@ -67,8 +67,9 @@ void print_quality(const CalibrationResult& result) {
   fmt::print("  fit quality: sum of squared residuals {:.4g} -> {:.4g} ({} residuals, {} evaluations)\n",
              result.objective_start, result.objective, result.residual_count, result.evaluations);
   for (const RecordingFit& r : result.recordings)
-    fmt::print("    {:<40} {:<13} RMS residual {:.4f} -> {:.4f}\n", fs::path(r.path).filename().string(),
-               kind_name(r.kind), r.rms_start, r.rms_fitted);
+    fmt::print("    {:<40} {:<13} RMS residual {:.4f} -> {:.4f}, variance inflation {:.3g}\n",
+               fs::path(r.path).filename().string(), kind_name(r.kind), r.rms_start, r.rms_fitted,
+               r.variance_inflation);
 }
 
 json estimates_json(const CalibrationResult& result) {
@@ -162,7 +163,12 @@ int calibrate_command(const CalibrateOptions& o) {
       bar.finish();
       print_estimates(fits.back());
       print_quality(fits.back());
+      json recordings_fit = json::array();
+      for (const RecordingFit& r : fits.back().recordings)
+        recordings_fit.push_back({{"recording", r.path}, {"kind", kind_name(r.kind)}, {"rms_start", r.rms_start},
+                                  {"rms_fitted", r.rms_fitted}, {"variance_inflation", r.variance_inflation}});
       report["configurations"].push_back({{"estimates", estimates_json(fits.back())},
+                                          {"recordings", recordings_fit},
                                           {"objective", fits.back().objective},
                                           {"objective_start", fits.back().objective_start}});
     }

@@ -33,7 +33,7 @@ json rocking_scenario() {
           {"interfaces", {{{"lower", "table"}, {"upper", "block"}, {"mu_s", kMuS}, {"mu_k", kMuK},
                            {"restitution", kRestitution}}}},
           {"contact", {{"stiffness", kStiffness}}},
-          {"simulation", {{"duration", 2.0}, {"time_step", 1e-4}, {"output_rate", 200}}}};
+          {"simulation", {{"duration", 1.5}, {"time_step", 2e-4}, {"output_rate", 200}}}};
 }
 
 // A squat 0.5 x 0.5 x 0.3 m, 100 kg block (it slides, never rocks) on a table
@@ -44,21 +44,26 @@ json sliding_scenario() {
                   {"nodes", {{"layout", "vertices"}}}}};
   s["interfaces"][0]["upper"] = "slider";
   s["table_motion"] = {{"x", {{"motion", "sweep"}, {"amplitude", "6 m/s^2"}, {"frequency", 1.0},
-                              {"frequency_end", 3.0}, {"duration", 2.0}}}};
+                              {"frequency_end", 3.0}, {"duration", 1.5}}}};
+  return s;
+}
+
+// The rocking block dropped flat from 5 cm: the bounce (restitution) and the
+// contact phase and sink at rest (stiffness) show in its uplift.
+json drop_scenario() {
+  json s = rocking_scenario();
+  s["bodies"][0]["position"] = {0.0, 0.0, 0.05};
+  s["bodies"][0].erase("orientation");
+  s["simulation"]["duration"] = 0.4;
   return s;
 }
 
 // The model the calibration starts from: same numerics and stiffness.
-json model() { return {{"simulation", {{"time_step", 1e-4}}}, {"contact", {{"stiffness", kStiffness}}}}; }
+json model() { return {{"simulation", {{"time_step", 2e-4}}}, {"contact", {{"stiffness", kStiffness}}}}; }
 
-// Restitution from noisy free rocking, stiffness and friction known. The
-// joint fit of stiffness, restitution, mu_s and mu_k to this rocking record
-// and the sliding one below does NOT recover them (docs/validation.md, last
-// section): stiffness and restitution trade off along a valley of the
-// rocking objective, and the replayed table does not reproduce the sliding
-// record at the true parameters. Tolerance 0.02 on e = 0.3: the per-impact
-// amplitudes carry 0.6 % noise (1 mrad of 0.16 rad), which the Gauss-Newton
-// interval (14 residuals) understates; measured 0.3089.
+// Restitution from noisy free rocking, stiffness and friction known.
+// Tolerance 0.02 on e = 0.3: the per-impact amplitudes carry 0.6 % noise
+// (1 mrad of 0.16 rad).
 TEST(Calibration, RecoversRestitutionFromNoisyFreeRocking) {
   test::TempDir dir;
   const MeasurementNoise noise{1e-3, 5e-4, 7};  // 1 mrad on the angles, 0.5 mm on lengths
@@ -73,9 +78,87 @@ TEST(Calibration, RecoversRestitutionFromNoisyFreeRocking) {
   options.work_directory = dir / "runs";
   const CalibrationResult fit = calibrate(model(), recordings, options);
   EXPECT_NEAR(fit.estimates[0].value, kRestitution, 0.02);
+  // The interval is believable: it holds the truth (measured 0.3003, 95 %
+  // interval [0.2988, 0.3018]; before the amplitudes were read from a
+  // parabola's vertex, 0.3089 with a standard error of 0.0005).
+  EXPECT_LE(fit.estimates[0].lower95, kRestitution);
+  EXPECT_GE(fit.estimates[0].upper95, kRestitution);
   EXPECT_TRUE(std::isfinite(fit.estimates[0].standard_error));
   EXPECT_LT(fit.objective, 0.01 * fit.objective_start);  // the mismatch at the start was real
   EXPECT_NEAR(fit.model["interfaces"][0]["restitution"].get<double>(), fit.estimates[0].value, 1e-12);
+}
+
+const MeasurementNoise kNoise{1e-3, 5e-4, 7};  // 1 mrad on the angles, 0.5 mm on lengths
+
+// Replayed at the true parameters, the recorded table acceleration reproduces
+// the sliding record (made with the analytic sweep) to within its noise: the
+// residuals, divided by the stated noise, are unit normal, so their sum of
+// squares is chi-square with n degrees of freedom (mean n, sd sqrt(2 n)).
+// Measured without noise: slide_x of the replay within 0.06 mm of the record.
+TEST(Calibration, SlidingReplayAtTheTrueParametersReproducesTheRecord) {
+  test::TempDir dir;
+  const Recording recorded = synthetic_recording(sliding_scenario(), dir / "sliding", kNoise);
+  ASSERT_EQ(classify_recording(recorded), RecordingKind::kHistory);
+  json run = recording_scenario(model(), recorded, "table_motion.csv");
+  apply_parameters(run, {parse_calibration_parameter("restitution"), parse_calibration_parameter("mu_s"),
+                         parse_calibration_parameter("mu_k")}, {kRestitution, kMuS, kMuK});
+  const std::vector<double> r =
+      calibration_residuals(RecordingKind::kHistory, recorded, simulate_recording(run, recorded, dir / "replay"));
+  double chi2 = 0.0;
+  for (double x : r) chi2 += x * x;
+  const double n = static_cast<double>(r.size());
+  EXPECT_GE(n, 301.0);  // every sample of slide_x compared
+  EXPECT_NEAR(chi2, n, 4.0 * std::sqrt(2.0 * n));
+}
+
+// The experiment set of the seed paper plus a drop: stiffness and restitution
+// from a free-rocking record and a face-on drop (rocking alone does not
+// separate them: they trade off along a valley of its objective, fitted
+// 1.4e8 and 0.15 against 2e7 and 0.3; the drop's contact phase and sink at
+// rest pin stiffness, its bounce restitution), then mu_s and mu_k from the
+// sliding record with those values. Each parameter must come back within its
+// 95 % interval (the Gauss-Newton covariance, inflated for serial
+// correlation: docs/calibration.md), and the interval must be narrow enough
+// to be useful: a factor 1.5 on stiffness (the sink at rest to 50 %), +-0.05
+// on restitution, +-0.03 on the friction coefficients (about 10 %).
+// DISABLED: it fails (47 s). The data identify the parameters (objective at
+// the truth about n; the drop alone: chi-square 134 at 2e7, 619 at 1e7, 304
+// at 4e7 for 121 residuals), but BOBYQA does not reach the minimum within the
+// budget: fitted 4.6e7 / 0.26 (objective 300 for 91 residuals) and mu_s 0.62,
+// mu_k 0.21 (13861 for 301). A least-squares optimiser (Levenberg-Marquardt
+// on the residual vector) is the next step (docs/calibration.md).
+TEST(Calibration, DISABLED_RecoversStiffnessRestitutionAndFriction) {
+  test::TempDir dir;
+  const std::vector<Recording> rocking_and_drop = {synthetic_recording(rocking_scenario(), dir / "rocking", kNoise),
+                                                   synthetic_recording(drop_scenario(), dir / "drop", kNoise)};
+  ASSERT_EQ(classify_recording(rocking_and_drop[1]), RecordingKind::kHistory);
+  CalibrationOptions options;
+  options.parameters = {parse_calibration_parameter("stiffness:2e6:2e8:5e7"),
+                        parse_calibration_parameter("restitution:0.05:0.8:0.45")};
+  options.max_evaluations = 30;
+  options.work_directory = dir / "contact";
+  const CalibrationResult contact = calibrate(model(), rocking_and_drop, options);
+
+  json friction_model = model();
+  friction_model["contact"] = {{"stiffness", contact.estimates[0].value}, {"restitution", contact.estimates[1].value}};
+  options.parameters = {parse_calibration_parameter("mu_s:0.1:0.8:0.5"), parse_calibration_parameter("mu_k:0.1:0.8:0.4")};
+  options.max_evaluations = 25;
+  options.work_directory = dir / "friction";
+  const CalibrationResult friction =
+      calibrate(friction_model, {synthetic_recording(sliding_scenario(), dir / "sliding", kNoise)}, options);
+
+  const double truth[] = {kStiffness, kRestitution, kMuS, kMuK};
+  const double useful[] = {std::log(1.5), 0.05, 0.03, 0.03};  // half-width of a useful 95 % interval
+  int i = 0;
+  for (const CalibrationResult* fit : {&contact, &friction})
+    for (const ParameterEstimate& e : fit->estimates) {
+      SCOPED_TRACE(e.parameter.name);
+      EXPECT_GE(truth[i], e.lower95);
+      EXPECT_LE(truth[i], e.upper95);
+      const double half_width = e.parameter.log_scale ? 0.5 * std::log(e.upper95 / e.lower95) : 0.5 * (e.upper95 - e.lower95);
+      EXPECT_LT(half_width, useful[i]);
+      ++i;
+    }
 }
 
 // The pose metrics on a trajectory displaced by a known amount: a recording
