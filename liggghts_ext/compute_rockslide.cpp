@@ -150,8 +150,11 @@ void ComputeRockSlide::compute_array() {
   std::vector<freestand::BodyPose> poses;
   std::vector<char> present;
   source_->gather_poses(poses, present);
-  const Eigen::Vector3d table =
-      table_ ? table_->state().displacement : Eigen::Vector3d::Zero().eval();
+  freestand::TablePose table;
+  if (table_) {
+    const freestand::TableState state = table_->state();
+    table = {state.displacement, state.orientation, Eigen::Vector3d(0.0, 0.0, table_->plane_height())};
+  }
   const std::vector<freestand::ModeChannels> values = channels_->update(poses, present, table);
   for (std::size_t i = 0; i < values.size(); ++i) {
     const std::vector<double> row = freestand::channel_values(values[i]);

@@ -426,37 +426,47 @@ void FixRigidConvex::post_force(int) {
   }
 }
 
-// Contact nodes of body i against the table plane z = plane_z + d_z(t),
-// moving with the table's velocity.
+FixRigidConvex::TablePlane FixRigidConvex::table_plane() const {
+  TablePlane plane{Vector3d(0.0, 0.0, plane_z_), Vector3d::UnitZ(), Vector3d::Zero(), Vector3d::Zero()};
+  if (!table_) return plane;
+  const freestand::TableState table = table_->state();
+  plane.point += table.displacement;
+  plane.normal = table.orientation.toRotationMatrix().col(2);
+  plane.velocity = table.velocity;
+  plane.omega = table.angular_velocity;
+  return plane;
+}
+
+// Contact nodes of body i against the table plane (through the table's
+// reference point, normal R_table e_z), whose material point at x moves with
+// v_table + omega_table x (x - reference point). With a table that does not
+// rotate, the normal is exactly e_z and the terms in omega exactly zero.
 void FixRigidConvex::table_contact(int i) {
   BodyState &s = state_[i];
   const BodyTemplate &t = templates_[s.body];
   const Vector3d com(atom->x[i]), v(atom->v[i]), w(atom->omega[i]);
-  Vector3d table_velocity = Vector3d::Zero();
-  double plane = plane_z_;
-  if (table_) {
-    const freestand::TableState table = table_->state();
-    table_velocity = table.velocity;
-    plane += table.displacement.z();
-  }
+  const TablePlane table = table_plane();
+  const double plane = table.normal.dot(table.point);  // heights along the table normal
+  const double height = table.normal.dot(com);
   // Lowest possible node: skip bodies far above the plane.
-  if (com.z() - atom->radius[i] > plane) {
+  if (height - atom->radius[i] > plane) {
     for (auto &h : s.table_history) h = freestand::ContactHistory{};
     return;
   }
   const Eigen::Matrix3d rotation = s.orientation.toRotationMatrix();
-  const Vector3d up = rotation.row(2).transpose();  // world z in the body frame
+  const Vector3d up = rotation.transpose() * table.normal;  // table normal in the body frame
   const freestand::PlaneContactNodes &nodes = t.table_nodes;
   Vector3d force = Vector3d::Zero(), torque = Vector3d::Zero();
   const double dt = update->dt;
   for (std::size_t k = 0; k < nodes.points(); ++k) {
-    const double overlap = plane - (com.z() + up.dot(nodes.point[k]));
+    const double overlap = plane - (height + up.dot(nodes.point[k]));
     const int first = nodes.first_share[k], end = nodes.first_share[k + 1];
     if (overlap <= 0.0) {
       for (int share = first; share < end; ++share) s.table_history[share] = freestand::ContactHistory{};
       continue;
     }
     const Vector3d r = rotation * nodes.point[k];
+    const Vector3d table_velocity = table.velocity + table.omega.cross(com + r - table.point);
     const int acting = nodes.acting_shares(k, up, acting_.data());
     // A face that stops acting (the body rolled onto another face) forgets
     // its tangential spring.
@@ -465,7 +475,7 @@ void FixRigidConvex::table_contact(int i) {
       else s.table_history[share] = freestand::ContactHistory{};
     for (int a = 0; a < acting; ++a) {
       const int share = acting_[a];
-      freestand::ContactPoint contact{Vector3d::UnitZ(), overlap, v + w.cross(r) - table_velocity,
+      freestand::ContactPoint contact{table.normal, overlap, v + w.cross(r) - table_velocity,
                                       nodes.area[share], nodes.dashpot_mass[share]};
       const freestand::ContactForce result = t.table_law->compute(contact, dt, s.table_history[share]);
       force += result.force;
@@ -501,13 +511,15 @@ void FixRigidConvex::add_pair_resultant(int i, const Vector3d &force, const Vect
 namespace {
 
 // A point on the line of action of a force F with torque T about `com`:
-// com + F x T / |F|^2 is the point of the line nearest the COM; with
-// `plane_z` the point where the line meets that height (the table plane).
-Vector3d line_of_action(const Vector3d &com, const Vector3d &force, const Vector3d &torque, const double *plane_z) {
+// com + F x T / |F|^2 is the point of the line nearest the COM; with a
+// plane (a point on it and its normal) the point where the line meets it.
+Vector3d line_of_action(const Vector3d &com, const Vector3d &force, const Vector3d &torque,
+                        const Vector3d *plane_point, const Vector3d &plane_normal) {
   const double f2 = force.squaredNorm();
   if (f2 == 0.0) return com;
   Vector3d point = com + force.cross(torque) / f2;
-  if (plane_z && force.z() != 0.0) point += force * ((*plane_z - point.z()) / force.z());
+  const double along = plane_normal.dot(force);
+  if (plane_point && along != 0.0) point += force * (plane_normal.dot(*plane_point - point) / along);
   return point;
 }
 
@@ -517,14 +529,13 @@ std::vector<FixRigidConvex::ContactResultant> FixRigidConvex::gather_contact_res
   const std::size_t n = templates_.size();
   constexpr int kRow = 12;  // table force, table point, pair force, pair point
   std::vector<double> local(kRow * n, 0.0), global(kRow * n, 0.0);
-  double plane = plane_z_;
-  if (table_) plane += table_->state().displacement.z();
+  const TablePlane table = table_plane();
   for (int i = 0; i < atom->nlocal; ++i) {
     const BodyState &s = state_[i];
     if (s.body < 0) continue;
     const Vector3d com(atom->x[i]);
-    const Vector3d rows[4] = {s.table_force, line_of_action(com, s.table_force, s.table_torque, &plane),
-                              s.pair_force, line_of_action(com, s.pair_force, s.pair_torque, nullptr)};
+    const Vector3d rows[4] = {s.table_force, line_of_action(com, s.table_force, s.table_torque, &table.point, table.normal),
+                              s.pair_force, line_of_action(com, s.pair_force, s.pair_torque, nullptr, table.normal)};
     for (int r = 0; r < 4; ++r)
       for (int k = 0; k < 3; ++k) local[kRow * s.body + 3 * r + k] = rows[r][k];
   }

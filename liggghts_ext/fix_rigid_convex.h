@@ -97,7 +97,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   // their line of action: the table's in the table plane, the other bodies'
   // nearest the COM. Collective.
   struct ContactResultant {
-    Eigen::Vector3d table_force, table_point;  // N, m (world)
+    Eigen::Vector3d table_force, table_point;  // N, m (world); the point is in the table plane
     Eigen::Vector3d pair_force, pair_point;    // N, m (world)
   };
   std::vector<ContactResultant> gather_contact_resultants();
@@ -134,6 +134,13 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   void create_bodies();
   void check_time_step();
   void table_contact(int i);
+  // The table plane now: through `point` (the table's reference point) with
+  // upward unit normal `normal`; `point` moves at `velocity`, the table
+  // turns at `omega` (world frame).
+  struct TablePlane {
+    Eigen::Vector3d point, normal, velocity, omega;
+  };
+  TablePlane table_plane() const;
 
   freestand::Scene scene_;                          // as read, with defaults applied
   std::vector<std::unique_ptr<freestand::ContactLaw>> laws_;  // one per scene interface

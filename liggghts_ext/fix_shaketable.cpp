@@ -37,7 +37,7 @@ std::vector<std::string> motion_args(int narg, char **arg, double &plane_z, Erro
 
 FixShakeTable::FixShakeTable(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {
   vector_flag = 1;
-  size_vector = 9;
+  size_vector = 14;
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
@@ -90,7 +90,10 @@ double FixShakeTable::compute_vector(int i) {
   const freestand::TableState s = state();
   if (i < 3) return s.acceleration[i];
   if (i < 6) return s.velocity[i - 3];
-  return s.displacement[i - 6];
+  if (i < 9) return s.displacement[i - 6];
+  if (i == 9) return s.roll;
+  if (i == 10) return s.pitch;
+  return s.angular_velocity[i - 11];
 }
 
 void FixShakeTable::write_restart(FILE *fp) {

@@ -22,7 +22,8 @@ class FixShakeTable : public Fix {
  public:
   FixShakeTable(class LAMMPS *lmp, int narg, char **arg);
   int setmask() override;
-  // Global vector: ax ay az vx vy vz dx dy dz at the current time step.
+  // Global vector at the current time step: ax ay az vx vy vz dx dy dz, roll
+  // and pitch (rad), angular velocity wx wy wz (rad/s, world).
   double compute_vector(int i) override;
   void write_restart(FILE *fp) override;
   void restart(char *buf) override;
@@ -34,8 +35,10 @@ class FixShakeTable : public Fix {
   freestand::TableState state() const;
   // Seconds since the motion's time 0 (negative before `start`).
   double motion_time() const;
-  // Height of the table top at rest (the `plane` keyword), m.
+  // Height of the table top at rest (the `plane` keyword), m: the table
+  // rotates about the point (0, 0, plane_height) moved with it.
   double plane_height() const { return plane_z_; }
+  bool rotates() const { return table_->rotates(); }
 
  private:
   std::unique_ptr<freestand::ShakeTable> table_;  // the motion, in motion time

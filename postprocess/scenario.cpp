@@ -195,8 +195,8 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
   double longest_record = 0.0;
   if (doc.contains("table_motion")) {
     for (const auto& [axis, spec] : doc.at("table_motion").items()) {
-      if (axis != "x" && axis != "y" && axis != "z")
-        fail(scenario.path + ": table_motion", "axes are x, y and z, not '" + axis + "'");
+      if (axis != "x" && axis != "y" && axis != "z" && axis != "roll" && axis != "pitch")
+        fail(scenario.path + ": table_motion", "axes are x, y, z, roll and pitch, not '" + axis + "'");
       double length = 0.0;
       table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec, &length);
       longest_record = std::max(longest_record, length);

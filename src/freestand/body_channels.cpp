@@ -17,7 +17,8 @@ std::vector<double> channel_values(const ModeChannels& c) {
 }
 
 BodyChannels::BodyChannels(std::vector<ChannelBody> bodies)
-    : bodies_(std::move(bodies)), frame_offset_(bodies_.size()), trackers_(bodies_.size()) {
+    : bodies_(std::move(bodies)), frame_offset_(bodies_.size()), trackers_(bodies_.size()),
+      table_anchor_(bodies_.size()) {
   const int n = static_cast<int>(bodies_.size());
   for (int i = 0; i < n; ++i) {
     // Walking down the supports must reach the table within n steps.
@@ -33,7 +34,7 @@ BodyChannels::BodyChannels(std::vector<ChannelBody> bodies)
 
 std::vector<ModeChannels> BodyChannels::update(const std::vector<BodyPose>& source_poses,
                                                const std::vector<char>& present,
-                                               const Eigen::Vector3d& table_displacement) {
+                                               const TablePose& table) {
   const std::size_t n = bodies_.size();
   own_.assign(n, BodyPose{});
   known_.assign(n, 0);
@@ -53,10 +54,22 @@ std::vector<ModeChannels> BodyChannels::update(const std::vector<BodyPose>& sour
     const int below = bodies_[i].support;
     if (!known_[i] || (below >= 0 && !known_[below])) continue;
     const Eigen::Vector3d support =
-        below < 0 ? table_displacement : top_centre(own_[below], bodies_[below].geometry);
+        below < 0 ? table_point(i, table) : top_centre(own_[below], bodies_[below].geometry);
     channels[i] = trackers_[i].update(own_[i], bodies_[i].geometry, support);
   }
   return channels;
+}
+
+// d + (R R0^-1 - I) q0, q0 the base centre's initial offset from the table's
+// reference point: the material point's displacement, written so that a
+// table that does not turn (R = R0 = I, exactly) gives d bit for bit.
+Eigen::Vector3d BodyChannels::table_point(std::size_t i, const TablePose& table) {
+  if (!table_anchor_[i])
+    table_anchor_[i] = TableAnchor{base_centre(own_[i], bodies_[i].geometry) - table.pivot - table.displacement,
+                                   table.orientation.conjugate()};
+  const Eigen::Matrix3d turn = (table.orientation * table_anchor_[i]->initial_inverse).toRotationMatrix() -
+                               Eigen::Matrix3d::Identity();
+  return table.displacement + turn * table_anchor_[i]->offset;
 }
 
 }  // namespace freestand

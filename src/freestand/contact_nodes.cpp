@@ -151,27 +151,6 @@ void rings(const std::vector<Vector3d>& p, const Vector3d& c, const Vector3d& nr
     for (size_t j = 0; j + 1 < ring[nr][k].size(); ++j) b->boundary.push_back(ring[nr][k][j]);
 }
 
-// Mean value coordinates (Floater 2003) of a point strictly inside a convex
-// polygon: positive, sum to 1, and reproduce linear functions (sum w_i b_i = x),
-// so moving an area with them keeps the area and its first moment.
-void mean_value_weights(const std::vector<Vector3d>& poly, const Vector3d& x, const Vector3d& n,
-                        std::vector<double>* w) {
-  const size_t m = poly.size();
-  std::vector<double> r(m), t(m);
-  for (size_t i = 0; i < m; ++i) r[i] = (poly[i] - x).norm();
-  for (size_t i = 0; i < m; ++i) {
-    const Vector3d di = poly[i] - x, dj = poly[(i + 1) % m] - x;
-    t[i] = di.cross(dj).dot(n) / (r[i] * r[(i + 1) % m] + di.dot(dj));  // tan(alpha_i / 2)
-  }
-  w->assign(m, 0.0);
-  double sum = 0.0;
-  for (size_t i = 0; i < m; ++i) {
-    (*w)[i] = (t[(i + m - 1) % m] + t[i]) / r[i];
-    sum += (*w)[i];
-  }
-  for (double& v : *w) v /= sum;
-}
-
 }  // namespace
 
 PolygonNodes polygon_nodes(const std::vector<Vector3d>& loop, const Vector3d& normal, const NodeOptions& options) {
@@ -218,7 +197,7 @@ PolygonNodes polygon_nodes(const std::vector<Vector3d>& loop, const Vector3d& no
   std::vector<double> w;
   for (size_t i = 0; i < b.out.position.size(); ++i) {
     if (b.out.kind[i] != NodeKind::kInterior) continue;
-    mean_value_weights(poly, b.out.position[i], normal, &w);
+    polygon_weights(poly, b.out.position[i], normal, 0.0, &w);  // interior: mean value coordinates
     for (size_t k = 0; k < poly.size(); ++k) b.out.area[b.boundary[k]] += w[k] * b.out.area[i];
   }
   PolygonNodes kept;
@@ -275,6 +254,12 @@ std::vector<ContactNode> make_contact_nodes(const Clump& body, const NodeOptions
       node.kind = pn.kind[i];
       nodes.push_back(node);
     }
+  }
+  if (!options.base.flat()) {
+    // Every face's nodes on the base (the sides' nodes on the base edges too)
+    // move together, so they stay one point.
+    const BaseMap base(body, options.base);
+    for (ContactNode& node : nodes) node.position = base(node.position);
   }
   return nodes;
 }

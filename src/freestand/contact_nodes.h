@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "freestand/base_shape.h"
 #include "freestand/convex_shape.h"
 #include "freestand/shape_clump.h"
 
@@ -31,6 +32,8 @@ struct NodeOptions {
   int per_edge = 1;      // with spacing == 0: every face edge is cut into this many segments
   NodeLayout layout = NodeLayout::kSurface;
   std::vector<FaceRef> faces;  // faces that get nodes; empty: every face not kCovered
+  BaseShape base;              // base not flat: its nodes move (the exactness below is then
+                               // that of the moved base, base_shape.h)
 };
 
 enum class NodeKind { kVertex, kEdge, kInterior };

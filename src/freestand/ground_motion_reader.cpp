@@ -27,7 +27,7 @@ namespace {
 
 MotionUnit find_unit(const RecordSource& src) {
   if (const auto unit = find_motion_unit(src.units)) return *unit;
-  fail(src.path, fmt::format("unknown units '{}' (expected g, m/s^2, cm/s^2, mm/s^2, m/s or cm/s)",
+  fail(src.path, fmt::format("unknown units '{}' (expected g, m/s^2, cm/s^2, mm/s^2, m/s, cm/s, rad/s^2 or rad/s)",
                              src.units));
 }
 

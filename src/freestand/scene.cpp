@@ -134,7 +134,7 @@ Clump parse_shape(const json& body, const std::string& where) {
     piece_where += fmt::format(" ({})", piece_shape);
     if (piece_shape == "clump") fail(piece_where, "a clump piece cannot itself be a clump");
     for (const char* key : {"mass", "density", "com", "inertia", "position", "velocity", "omega",
-                            "nodes", "supported_by", "name"})
+                            "nodes", "base", "supported_by", "name"})
       if (p.contains(key))
         fail(piece_where, fmt::format("'{}' belongs to the body, not to a piece", key));
     ClumpPiece piece{parse_convex(p, piece_shape, piece_where)};
@@ -159,6 +159,38 @@ NodeOptions parse_nodes(const json& body, const NodeOptions& fallback, const std
     else fail(where, fmt::format("nodes: unknown layout '{}' (surface, boundary, vertices)", layout));
   }
   return options;
+}
+
+// "base": {"edge_inset": D, "corner_gaps": [{"corner": [X, Y], "gap": G}, ...]},
+// checked against the body's base.
+BaseShape parse_base(const json& body, const Clump& geometry, const std::string& where) {
+  BaseShape base;
+  if (!body.contains("base")) return base;
+  const json& b = body.at("base");
+  const std::string here = where + ": base";
+  if (!b.is_object()) fail(here, "must be an object with 'edge_inset' and/or 'corner_gaps'");
+  for (const auto& [key, value] : b.items())
+    if (key != "edge_inset" && key != "corner_gaps")
+      fail(here, fmt::format("unknown key '{}' (edge_inset, corner_gaps)", key));
+  if (b.contains("edge_inset")) base.edge_inset = number(b, "edge_inset", here);
+  if (b.contains("corner_gaps")) {
+    const json& gaps = b.at("corner_gaps");
+    if (!gaps.is_array()) fail(here, "'corner_gaps' must be a list of {\"corner\": [x, y], \"gap\": m}");
+    for (std::size_t i = 0; i < gaps.size(); ++i) {
+      const std::string gap_where = fmt::format("{}: corner_gaps[{}]", here, i);
+      const json& corner = field(gaps[i], "corner", gap_where);
+      if (!corner.is_array() || corner.size() != 2 || !corner[0].is_number() || !corner[1].is_number())
+        fail(gap_where, "'corner' must be a direction [x, y] in the body frame");
+      base.corner_gaps.push_back({Eigen::Vector2d(corner[0].get<double>(), corner[1].get<double>()),
+                                  number(gaps[i], "gap", gap_where)});
+    }
+  }
+  try {
+    BaseMap{geometry, base};
+  } catch (const InputError& e) {
+    fail(where, e.what());
+  }
+  return base;
 }
 
 // Mass, COM and inertia: as stated, the rest from geometry at uniform density.
@@ -202,6 +234,7 @@ BodySpec parse_body(const json& j, const SceneDefaults& defaults, const std::str
   }
   body.position = vector3_or(j, "position", where, Eigen::Vector3d::Constant(NAN));
   body.nodes = parse_nodes(j, defaults.nodes, where);
+  body.nodes.base = parse_base(j, body.geometry, where);
   return body;
 }
 

@@ -14,9 +14,11 @@ inline constexpr double kStandardGravity = 9.80665;
 
 // A unit of a ground-motion value.
 struct MotionUnit {
-  std::string_view name;  // as the user writes it: "g", "m/s^2", "cm/s^2", "mm/s^2", "m/s", "cm/s"
-  double to_si;           // SI value of one unit (m/s^2 or m/s)
+  std::string_view name;  // as the user writes it: "g", "m/s^2", "cm/s^2", "mm/s^2", "m/s", "cm/s",
+                          // or for a rotational table axis "rad/s^2", "rad/s"
+  double to_si;           // SI value of one unit (m/s^2, m/s, rad/s^2 or rad/s)
   bool is_velocity;       // a velocity unit rather than an acceleration unit
+  bool is_angular = false;  // rad/s^2 or rad/s: for the table's rotational axes (pitch, roll)
 };
 
 // The unit called `name`, or nothing if there is no such unit.

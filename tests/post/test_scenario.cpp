@@ -64,6 +64,21 @@ TEST(Scenario, ScriptRunsTheSceneWithTheTableMotionAndAutoTimeStep) {
   EXPECT_EQ(run.settings.duration, 0.5);
 }
 
+TEST(Scenario, TablePitchAndABaseThatIsNotFlatReachTheScriptAndScene) {
+  const freestand::test::TempDir dir;
+  json doc = json::parse(kBlock);
+  doc["table_motion"] = {{"pitch", {{"motion", "onesine"}, {"amplitude", {0.2, "rad/s^2"}}, {"frequency", 1}}}};
+  doc["bodies"][0]["base"] = {{"edge_inset", 0.01}, {"corner_gaps", {{{"corner", {1, -1}}, {"gap", 5e-4}}}}};
+  const freestand::GeneratedRun run = freestand::generate_run(freestand::read_scenario(dir.write("s.json", doc.dump())));
+  EXPECT_NE(run.script.find("shaketable pitch onesine amplitude 0.2 rad/s^2 frequency 1 plane 0"), std::string::npos)
+      << run.script;
+  EXPECT_EQ(run.scene["bodies"][0]["base"]["edge_inset"], 0.01);
+  doc["bodies"][0]["base"] = {{"edge_inset", 0.2}};  // wider than the 0.125 m half width
+  EXPECT_NE(error_of([&] { freestand::generate_run(freestand::read_scenario(dir.write("b.json", doc.dump()))); })
+                .find("body 'block': base: edge_inset 0.2 m is too large"),
+            std::string::npos);
+}
+
 TEST(Scenario, DurationComesFromTheRecordWhenNotStated) {
   // DUZCE_BOL090.AT2: 5590 samples at 0.01 s (index.csv), so 55.89 s after t = 0.
   const freestand::test::TempDir dir;
@@ -84,7 +99,7 @@ TEST(Scenario, MistakesNameTheFileAndField) {
   doc["table_motion"] = {{"x", {{"motion", "sine"}, {"pgaa", 1}}}};
   EXPECT_NE(generate(doc).find("bad.json: table_motion.x: unknown key 'pgaa'"), std::string::npos);
   doc["table_motion"] = {{"w", {{"motion", "sine"}}}};
-  EXPECT_NE(generate(doc).find("axes are x, y and z"), std::string::npos);
+  EXPECT_NE(generate(doc).find("axes are x, y, z, roll and pitch"), std::string::npos);
   doc["table_motion"] = {{"x", {{"record", "missing.AT2"}, {"units", "g"}}}};
   EXPECT_NE(generate(doc).find("missing.AT2"), std::string::npos);
   doc = json::parse(kBlock);

@@ -6,10 +6,16 @@ namespace freestand::reference {
 
 double HousnerBlock::R() const { return std::hypot(half_width, half_height); }
 double HousnerBlock::alpha() const { return std::atan2(half_width, half_height); }
-double HousnerBlock::p() const { return std::sqrt(3.0 * gravity / (4.0 * R())); }
+double HousnerBlock::p() const {
+  if (gyration2 < 0.0) return std::sqrt(3.0 * gravity / (4.0 * R()));
+  return std::sqrt(gravity * R() / (gyration2 + R() * R()));
+}
 double HousnerBlock::e() const {
   const double s = std::sin(alpha());
-  return 1.0 - 1.5 * s * s;
+  if (gyration2 < 0.0) return 1.0 - 1.5 * s * s;
+  // Angular momentum about the new pivot is kept across the impact:
+  // I_O w+ = (I_O - 2 m R^2 sin^2 alpha) w- (Housner 1963, eq. for general I_O).
+  return 1.0 - 2.0 * R() * R() * s * s / (gyration2 + R() * R());
 }
 
 std::vector<double> amplitude_map(const HousnerBlock& block, double theta0, int n) {

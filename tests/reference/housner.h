@@ -13,11 +13,18 @@ struct HousnerBlock {
   double half_width;   // b (m)
   double half_height;  // h (m)
   double gravity = 9.81;  // m/s^2
+  // I_c / m about the rocking axis through the centroid (m^2); < 0: the
+  // uniform rectangle's (b^2 + h^2) / 3. Set it when the pivots are not the
+  // body's own corners (a base with crushed edges: pivots at b - d, inertia
+  // of the full block).
+  double gyration2 = -1.0;
 
   double R() const;      // pivot-to-centroid distance sqrt(b^2 + h^2)
   double alpha() const;  // slenderness atan(b/h)
-  double p() const;      // frequency parameter sqrt(3 g / (4 R)) (rectangle)
-  double e() const;      // angular-velocity ratio across an impact: 1 - 1.5 sin^2(alpha)
+  // With I_O / m = gyration2 + R^2 (rectangle: 4 R^2 / 3):
+  double p() const;      // frequency parameter sqrt(g R / (I_O / m)); rectangle sqrt(3 g / (4 R))
+  double e() const;      // angular-velocity ratio across an impact: 1 - 2 R^2 sin^2(alpha) / (I_O / m);
+                         // rectangle 1 - 1.5 sin^2(alpha)
 };
 
 // Amplitudes theta_1..theta_n after each impact, from release at rest at

@@ -23,6 +23,24 @@ TEST(HousnerReference, MatchesBenchmarksSection1) {
   EXPECT_NEAR(4 * freestand::reference::quarter_period(block, 0.5 * block.alpha()), 1.39669, 1e-5);
 }
 
+TEST(HousnerReference, GeneralInertiaReducesToTheRectangleAndFollowsTheNarrowerPivot) {
+  // With the rectangle's own gyration radius the general I_O gives the same p
+  // and e; with pivots moved in (b' < b, inertia of the full block) both are
+  // those of Housner's general formulas, worked here by hand for b = 0.15,
+  // b' = 0.125, h = 0.5: I_O/m = (0.15^2 + 0.5^2)/3 + (0.125^2 + 0.5^2) =
+  // 0.0908333 + 0.265625 = 0.3564583 m^2; p^2 = 9.81 * 0.5153882 / I_O/m =
+  // 14.18387; e = 1 - 2 * 0.015625 / 0.3564583 = 0.9123320.
+  const HousnerBlock rectangle{0.125, 0.5};
+  HousnerBlock general{0.125, 0.5};
+  general.gyration2 = (0.125 * 0.125 + 0.25) / 3;
+  EXPECT_NEAR(general.p(), rectangle.p(), 1e-14);
+  EXPECT_NEAR(general.e(), rectangle.e(), 1e-14);
+  HousnerBlock crushed{0.125, 0.5};
+  crushed.gyration2 = (0.15 * 0.15 + 0.25) / 3;
+  EXPECT_NEAR(crushed.p() * crushed.p(), 14.18387, 1e-5);
+  EXPECT_NEAR(crushed.e(), 0.9123320, 1e-7);
+}
+
 TEST(NewmarkReference, RectangularPulseMatchesClosedForm) {
   // benchmarks.md section 6: A = 0.5 g for t0 = 0.2 s, mu = 0.2:
   // u_max = V^2 / (2 g N) (1 - N/A) = 0.1472 m (one-way: the block slides back
