@@ -25,6 +25,11 @@ struct MeasurementNoise {
 // table's motion is the input). The nominal keeps bodies and interfaces but
 // not the contact parameters (stiffness, restitution, friction), which a
 // calibration has to find.
+// Adds Gaussian noise to the body channels of `recording` (angles: rock,
+// twist; lengths: slide, uplift, centre); table channels and quaternions are
+// left exact.
+void add_measurement_noise(Recording& recording, const MeasurementNoise& noise);
+
 Recording synthetic_recording(const nlohmann::json& document, const std::string& directory,
                               const MeasurementNoise& noise);
 
