@@ -319,58 +319,75 @@ std::vector<MeasurementIssue> measurement_issues(const Recording& rec, const Rec
       divergence.push_back({name, cc.divergence_time});
       MeasurementIssue m;
       m.channel = name;
-      // Delay and gain on the segment before divergence, at least the first fifth of the
-      // record: a delay of a few samples alone makes a fast flank cross the divergence threshold.
+      // Delay and gain on the segment before divergence, where the physics still agrees (after it,
+      // a physics mismatch would pass for a gain); at least 20 samples.
       const double until = std::max(std::isfinite(cc.divergence_time) ? cc.divergence_time : rec.time.back(),
-                                    rec.time.front() + 0.2 * duration);
-      const signal::IndexRange r = signal::index_range(rec.time, rec.time.front(), until);
-      const std::vector<double> t(rec.time.begin() + r.first, rec.time.begin() + r.last);
-      const std::vector<double> y(body.motion.channels[c].begin() + r.first, body.motion.channels[c].begin() + r.last);
-      const comparison::Aligned a = comparison::align(t, y, sim.time, simulated->values);
+                                    rec.time.front() + 20 * dt);
       // A channel that hardly moves (peak below 20 noise s.d.) has no shape to correlate.
       if (cc.peak_recorded > 20 * cp.noise) {
-        const comparison::OffsetGain og = comparison::offset_and_gain(a, sim.time, simulated->values, cp);
+        const signal::IndexRange r = signal::index_range(rec.time, rec.time.front(), until);
+        const std::vector<double> t(rec.time.begin() + r.first, rec.time.begin() + r.last);
+        const std::vector<double> y(body.motion.channels[c].begin() + r.first, body.motion.channels[c].begin() + r.last);
+        const comparison::OffsetGain og =
+            comparison::offset_and_gain(comparison::align(t, y, sim.time, simulated->values), sim.time, simulated->values, cp);
         m.delay = og.offset, m.gain = og.gain, m.gain_sd = og.gain_sd, m.bias = og.bias, m.correlation = og.correlation;
-        // Two samples: the parabolic sub-sample lag of a noisy correlation is good to a fraction
-        // of a sample; 0.95: the shapes must agree for a lag to mean anything.
-        m.delay_significant = std::abs(m.delay) >= 2 * dt && m.correlation >= 0.95;
-        // 3 %: below that a gain is indistinguishable from a small geometric or stiffness error.
-        m.gain_significant = std::isfinite(m.gain) && std::abs(m.gain - 1) > std::max(4 * m.gain_sd, 0.03) &&
-                             m.correlation >= 0.95;
+        // Worth a candidate: a lag of two samples or more (the parabolic sub-sample lag of a noisy
+        // correlation is good to a fraction of a sample), a gain off by more than 3 % and 4 s.d.,
+        // with shapes that agree (correlation 0.95). A physics mismatch before the divergence
+        // also shows as a lag or gain: the candidates' competition on the events decides.
+        m.delay_suspected = std::abs(m.delay) >= 2 * dt && m.correlation >= 0.95;
+        m.gain_suspected = std::isfinite(m.gain) && std::abs(m.gain - 1) > std::max(4 * m.gain_sd, 0.03) &&
+                           m.correlation >= 0.95;
       }
       const auto [drift, drift_sd] = rest_drift(body.motion, body.motion.channels[c], body.summary.modes, cp.noise);
       m.drift = drift;
       m.drift_significant = std::isfinite(drift_sd) && std::abs(drift) > 4 * drift_sd &&
                             std::abs(drift) * duration > 4 * cp.noise;
-      std::vector<std::string> parts;
-      if (m.delay_significant) parts.push_back(fmt::format("lags the model by {:.1f} ms", 1e3 * m.delay));
-      if (m.gain_significant) parts.push_back(fmt::format("reads {:.1f} % {} (gain {:.3f} +- {:.3f})",
-                                                          100 * std::abs(m.gain - 1), m.gain > 1 ? "high" : "low",
-                                                          m.gain, m.gain_sd));
-      if (m.drift_significant) parts.push_back(fmt::format("drifts by {:.3g} per s at rest", m.drift));
-      if (parts.empty()) continue;
-      m.text = name + " " + parts.front();
-      for (std::size_t i = 1; i < parts.size(); ++i) m.text += (i + 1 == parts.size() ? " and " : ", ") + parts[i];
-      out.push_back(m);
+      if (m.drift_significant) m.text = fmt::format("{} drifts by {:.3g} per s at rest", name, m.drift);
+      if (m.drift_significant || m.delay_suspected || m.gain_suspected) out.push_back(m);
     }
   }
   return out;
 }
 
-// The recording with its measurement issues undone: (y(t + delay) - bias) / gain - drift (t - t0).
-Recording corrected(const Recording& rec, const std::vector<MeasurementIssue>& issues) {
-  Recording out = rec;
-  for (const MeasurementIssue& m : issues)
-    for (RecordingChannel& c : out.channels) {
-      if (c.name != m.channel) continue;
-      const std::vector<double> y = c.values;
-      for (std::size_t k = 0; k < y.size(); ++k) {
-        double v = m.delay_significant ? signal::interpolate(rec.time, y, rec.time[k] + m.delay) : y[k];
-        if (m.gain_significant) v = (v - m.bias) / m.gain;
-        if (m.drift_significant) v -= m.drift * (rec.time[k] - rec.time.front());
-        c.values[k] = v;
-      }
-    }
+RecordingChannel& channel_of(Recording& r, const std::string& name) {
+  for (RecordingChannel& c : r.channels) if (c.name == name) return c;
+  throw InputError(fmt::format("{}: no channel '{}'", r.path, name));
+}
+
+// The channel with a drift at rest removed: y - drift (t - t0).
+void remove_drift(Recording& r, const MeasurementIssue& m) {
+  RecordingChannel& c = channel_of(r, m.channel);
+  for (std::size_t k = 0; k < c.values.size(); ++k) c.values[k] -= m.drift * (r.time[k] - r.time.front());
+}
+
+// Sensor delay and gain of one channel as candidates (docs/diagnose.md): a delay shifts the
+// channel back, y(t + delay); a gain divides it.
+std::vector<Candidate> measurement_candidates(const MeasurementIssue& m, std::size_t recording) {
+  std::vector<Candidate> out;
+  const std::string channel = m.channel;
+  if (m.delay_suspected) {
+    Candidate c;
+    c.entry = "sensor_delay", c.where = channel, c.name = fmt::format("sensor_delay[{}]", channel), c.unit = "s";
+    c.description = fmt::format("the sensor of {} lags (a delay in the recording, not physics)", channel);
+    c.lower = -0.1, c.upper = 0.1, c.nominal = 0, c.recording = recording;
+    c.correct = [channel](Recording& r, double delay) {
+      RecordingChannel& ch = channel_of(r, channel);
+      const std::vector<double> y = ch.values;
+      for (std::size_t k = 0; k < y.size(); ++k) ch.values[k] = signal::interpolate(r.time, y, r.time[k] + delay);
+    };
+    out.push_back(c);
+  }
+  if (m.gain_suspected) {
+    Candidate c;
+    c.entry = "sensor_gain", c.where = channel, c.name = fmt::format("sensor_gain[{}]", channel);
+    c.description = fmt::format("the sensor of {} reads high or low (a gain in the recording, not physics)", channel);
+    c.lower = 0.8, c.upper = 1.25, c.nominal = 1, c.recording = recording;
+    c.correct = [channel](Recording& r, double gain) {
+      for (double& v : channel_of(r, channel).values) v /= gain;
+    };
+    out.push_back(c);
+  }
   return out;
 }
 
@@ -454,6 +471,11 @@ class Search {
     Features out;
     for (const auto& [k, v] : f) out[fmt::format("r{}:{}", recording + 1, k)] = v;
     return out;
+  }
+
+  // Whether feature `name` belongs to recording number r.
+  bool belongs(const std::string& name, std::size_t r) const {
+    return recordings_.size() == 1 || name.rfind(fmt::format("r{}:", r + 1), 0) == 0;
   }
 
   static MeasurementNoise noise_for(const Recording& r, unsigned seed) {
@@ -560,6 +582,83 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   return f;
 }
 
+// Which features are held out: those of recordings named with `prefix`, or after `split`.
+struct HeldOutRule {
+  std::string prefix;
+  double split = 0;
+  bool operator()(const std::string& name, const FeatureValue& f) const {
+    return prefix.empty() ? f.time > split : name.rfind(prefix, 0) == 0;
+  }
+};
+
+// The recorded features with each one's s.d.: the scatter of the ensemble (runs after the
+// first recordings.size() of `runs`) plus the feature's floor, in quadrature.
+Target make_target(const std::vector<Recording>& recordings, const std::vector<Features>& runs, const Search& search,
+                   const HeldOutRule& held) {
+  Target t;
+  for (std::size_t r = 0; r < recordings.size(); ++r) {
+    const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
+    t.recorded.insert(f.begin(), f.end());
+  }
+  for (const auto& [name, f] : t.recorded) {
+    std::vector<double> v;
+    for (std::size_t j = recordings.size(); j < runs.size(); ++j) {
+      if (!search.belongs(name, (j % recordings.size()))) continue;
+      const auto s = runs[j].find(name);
+      v.push_back(s == runs[j].end() ? f.fallback : s->second.value);
+    }
+    double mean = 0, var = 0;
+    for (double x : v) mean += x / v.size();
+    for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
+    t.sd[name] = std::sqrt(var + f.floor * f.floor);
+    if (held(name, f)) t.held_out.insert(name);
+  }
+  return t;
+}
+
+// A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
+// points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
+FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
+                           const Search& search, const HeldOutRule& held, const Features& current, double chi2_base,
+                           double held_base, bool held_available) {
+  std::vector<std::pair<double, double>> curve, held_curve;
+  for (int k = 0; k <= 40; ++k) {
+    const double v = c.lower + (c.upper - c.lower) * k / 40.0;
+    std::vector<Recording> corrected = recordings;
+    c.correct(corrected[c.recording], v);
+    const Target t = make_target(corrected, runs, search, held);
+    curve.push_back({k / 40.0, t.chi2(current, false)});
+    held_curve.push_back({k / 40.0, t.chi2(current, true)});
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
+  FittedCandidate f;
+  f.candidate = c;
+  f.value = to_value(c, curve[best].first);
+  f.chi2 = curve[best].second;
+  f.delta = chi2_base - f.chi2;
+  f.p_value = chi2_1_tail(f.delta);
+  f.delta_bic = f.delta - std::log(std::max(1, static_cast<int>(curve.size())));
+  f.standard_error = profile_sd(curve) * (c.upper - c.lower);
+  if (held_available) f.held_out_delta = held_base - held_curve[best].second;
+  f.evaluations = 0;
+  return f;
+}
+
+MeasurementIssue sensor_issue(const FittedCandidate& f, const std::vector<std::string>& alike) {
+  MeasurementIssue m;
+  m.channel = f.candidate.where;
+  const bool delay = f.candidate.entry == "sensor_delay";
+  if (delay) m.delay = f.value, m.delay_significant = true;
+  else m.gain = f.value, m.gain_sd = f.standard_error, m.gain_significant = true;
+  m.text = delay ? fmt::format("{} lags by {:.1f} ms", m.channel, 1e3 * f.value)
+                 : fmt::format("{} reads {:.1f} % {} (gain {:.3f})", m.channel, 100 * std::abs(f.value - 1),
+                               f.value > 1 ? "high" : "low", f.value);
+  m.text += fmt::format(" (misfit {:.1f} -> {:.1f}, p = {:.2g}{})", f.chi2 + f.delta, f.chi2, f.p_value,
+                        alike.empty() ? "" : fmt::format("; fits as well: {}", fmt::join(alike, ", ")));
+  return m;
+}
+
 std::string format_value(const Candidate& c, double v) {
   return c.unit.empty() ? fmt::format("{:.3g}", v) : fmt::format("{:.3g} {}", v, c.unit);
 }
@@ -640,40 +739,28 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
   Features nominal;
   for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
 
-  // 2. Measurement issues, and the recordings corrected for them.
-  Target target;
-  for (std::size_t r = 0; r < recordings.size(); ++r) {
-    std::vector<MeasurementIssue> issues = measurement_issues(recordings[r], nominal_runs[r], d.divergence);
-    const Features f = search.prefixed(event_features(corrected(recordings[r], issues), recordings[r].nominal), r);
-    target.recorded.insert(f.begin(), f.end());
-    d.measurement.insert(d.measurement.end(), issues.begin(), issues.end());
-  }
-  for (const auto& [name, f] : target.recorded) {
-    std::vector<double> v;
-    for (std::size_t j = recordings.size(); j < ensemble_runs.size(); j += recordings.size()) {
-      Features member;
-      for (std::size_t r = 0; r < recordings.size(); ++r) member.insert(ensemble_runs[j + r].begin(), ensemble_runs[j + r].end());
-      const auto s = member.find(name);
-      v.push_back(s == member.end() ? f.fallback : s->second.value);
+  // 2. Measurement: drift at rest removed at once; suspected delays and gains become candidates.
+  std::vector<Recording> measured = recordings;
+  std::vector<Candidate> sensor_candidates;
+  for (std::size_t r = 0; r < recordings.size(); ++r)
+    for (const MeasurementIssue& m : measurement_issues(recordings[r], nominal_runs[r], d.divergence)) {
+      if (m.drift_significant) remove_drift(measured[r], m), d.measurement.push_back(m);
+      for (Candidate& c : measurement_candidates(m, r)) sensor_candidates.push_back(std::move(c));
     }
-    double mean = 0, var = 0;
-    for (double x : v) mean += x / v.size();
-    for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
-    target.sd[name] = std::sqrt(var + f.floor * f.floor);
-  }
   // Held out: the last recording's features, or with one recording the later half of the events.
+  HeldOutRule held;
   if (recordings.size() > 1) {
-    const std::string prefix = fmt::format("r{}:", recordings.size());
-    for (const auto& [name, f] : target.recorded) if (name.rfind(prefix, 0) == 0) target.held_out.insert(name);
+    held.prefix = fmt::format("r{}:", recordings.size());
     d.notes.push_back(fmt::format("held out: {} (fitted on the others)", recordings.back().path));
   } else {
     std::vector<double> times;
-    for (const auto& [name, f] : target.recorded) times.push_back(f.time);
+    for (const auto& [name, f] : event_features(measured.front(), recordings.front().nominal)) times.push_back(f.time);
+    if (times.empty()) throw InputError(fmt::format("{}: no event features (nothing moves)", recordings.front().path));
     std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    const double split = times[times.size() / 2];
-    for (const auto& [name, f] : target.recorded) if (f.time > split) target.held_out.insert(name);
-    d.notes.push_back(fmt::format("held out: the features after t = {:.2f} s (the later half of the events)", split));
+    held.split = times[times.size() / 2];
+    d.notes.push_back(fmt::format("held out: the features after t = {:.2f} s (the later half of the events)", held.split));
   }
+  Target target = make_target(measured, ensemble_runs, search, held);
   const bool held_available = target.count(true) > 0;
   d.feature_count = static_cast<int>(target.recorded.size());
   d.chi2_nominal = target.chi2(nominal, false) + target.chi2(nominal, true);
@@ -684,7 +771,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
   std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), &d.notes);
   Features current = nominal;
   int tried = 0;
-  for (int round = 0; round < options.max_effects && !candidates.empty(); ++round) {
+  for (int round = 0; round < options.max_effects && !(candidates.empty() && sensor_candidates.empty()); ++round) {
     const double chi2_base = target.chi2(current, false), held_base = target.chi2(current, true);
     std::vector<Model> points;
     std::vector<Profile> profiles(candidates.size());
@@ -702,15 +789,18 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     const std::vector<Features> evaluated = search.evaluate(points, fmt::format("round {}: profiles", round + 1));
     for (std::size_t i = 0, j = 0; i < candidates.size(); ++i)
       for (std::size_t k = 1; k < profiles[i].u.size(); ++k) profiles[i].features.push_back(evaluated[j++]);
-    tried += static_cast<int>(candidates.size());
+    tried += static_cast<int>(candidates.size() + sensor_candidates.size());
     std::vector<FittedCandidate> fits;
     for (std::size_t i = 0; i < candidates.size(); ++i)
       fits.push_back(summarise(candidates[i], profiles[i], target, chi2_base, held_base, held_available));
+    for (const Candidate& c : sensor_candidates)
+      fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available));
     std::size_t best = 0;
     for (std::size_t i = 1; i < fits.size(); ++i) if (fits[i].delta > fits[best].delta) best = i;
-    // The best refined: two rounds of 4 points inside the bracket around its minimum.
-    Profile& p = profiles[best];
-    for (int refine = 0; refine < 2; ++refine) {
+    const bool sensor = best >= candidates.size();
+    // A physics best is refined: two rounds of 4 points inside the bracket around its minimum.
+    for (int refine = 0; refine < 2 && !sensor; ++refine) {
+      Profile& p = profiles[best];
       const double u = to_scaled(candidates[best], fits[best].value);
       std::vector<double> us = p.u;
       std::sort(us.begin(), us.end());
@@ -726,22 +816,33 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       fits[best] = summarise(candidates[best], p, target, chi2_base, held_base, held_available);
     }
     d.rounds.push_back(fits);
-    const FittedCandidate& f = fits[best];
+    const FittedCandidate f = fits[best];
     // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
     // improvement must hold on the held-out features.
     const bool significant = f.p_value < options.alpha / tried && f.delta_bic > 0 &&
                              (!held_available || f.held_out_delta > 0);
     if (!significant) break;
+    std::vector<std::string> alike;
+    for (const FittedCandidate& g : fits)
+      if (g.candidate.name != f.candidate.name && g.delta > f.delta - kIndistinguishable && g.delta > 0)
+        alike.push_back(g.candidate.name);
+    if (sensor) {
+      f.candidate.correct(measured[f.candidate.recording], f.value);
+      target = make_target(measured, ensemble_runs, search, held);
+      d.measurement.push_back(sensor_issue(f, alike));
+      sensor_candidates.erase(sensor_candidates.begin() + (best - candidates.size()));
+      continue;
+    }
     Effect e;
     e.fit = f;
     e.candidates_tried = tried;
+    e.indistinguishable = alike;
     e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
     const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
     e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
-    for (const FittedCandidate& g : fits)
-      if (&g != &f && g.delta > f.delta - kIndistinguishable && g.delta > 0) e.indistinguishable.push_back(g.candidate.name);
     d.effects.push_back(e);
     base = applied(base, f.candidate, f.value);
+    const Profile& p = profiles[best];
     for (std::size_t i = 0; i < p.u.size(); ++i)
       if (std::abs(to_value(f.candidate, p.u[i]) - f.value) < 1e-12 * std::max(1.0, std::abs(f.value))) current = p.features[i];
     candidates.erase(candidates.begin() + best);

@@ -43,6 +43,9 @@ struct Candidate {
   bool stated = false;       // the nominal states it: a fit is a recalibration, else missing physics
   bool at_boundary = false;  // the nominal value is a bound of the admissible range (LRT boundary correction)
   std::function<void(nlohmann::json&, double)> apply;  // sets the value in a scenario document
+  // Measurement candidates (sensor delay, gain) change the recording, not the model:
+  std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
+  std::size_t recording = 0;
 };
 
 // Candidates of every available catalogue entry for a run document (bodies,
@@ -65,11 +68,15 @@ using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal);
 
 // A measurement issue of one channel: recorded ~ gain * simulated(t - delay) + bias + drift t.
+// The estimates come from the comparison with the nominal run; drift at rest is
+// accepted at once (physics does not move a body at rest), a delay or gain only
+// as a candidate that beats every physics candidate on the event features.
 struct MeasurementIssue {
   std::string channel;        // "block.rock_x"
   double delay = 0, gain = 1, gain_sd = 0, bias = 0, drift = 0;  // s, -, -, channel units, units/s
   double correlation = 0;
-  bool delay_significant = false, gain_significant = false, drift_significant = false;
+  bool delay_suspected = false, gain_suspected = false;  // worth a candidate
+  bool delay_significant = false, gain_significant = false, drift_significant = false;  // accepted
   std::string text;           // plain words
 };
 
