@@ -671,6 +671,34 @@ std::string event_words(const Mismatch& m) {
   return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
 }
 
+// The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
+// (where the body states its orientation) and spin perturbed by the angle noise, each with
+// its own noise seed.
+std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members) {
+  std::vector<Job> jobs;
+  for (std::size_t r = 0; r < recordings.size(); ++r) jobs.push_back({base[r], r, 1});
+  std::mt19937 rng(12345);
+  std::normal_distribution<double> normal(0, 1);
+  for (int e = 0; e < members; ++e)
+    for (std::size_t r = 0; r < recordings.size(); ++r) {
+      json doc = base[r];
+      const double angle = parameters_for(recordings[r].nominal).angle_noise;
+      for (json& b : doc["bodies"]) {
+        // A spin that turns the body by one angle-noise s.d. in 1/(2 pi) s.
+        b["omega"] = {angle * 2 * M_PI * normal(rng), angle * 2 * M_PI * normal(rng), 0.0};
+        if (b.contains("orientation")) {
+          const auto q = b["orientation"].get<std::vector<double>>();
+          Eigen::Quaterniond tilt(Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitX()) *
+                                  Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitY()));
+          const Eigen::Quaterniond turned = tilt * Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+          b["orientation"] = {turned.w(), turned.x(), turned.y(), turned.z()};
+        }
+      }
+      jobs.push_back({doc, r, static_cast<unsigned>(100 + e)});
+    }
+  return jobs;
+}
+
 }  // namespace
 
 Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recordings, const Options& options) {
@@ -713,29 +741,9 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
 
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle noise,
   // each with its own noise realisation.
-  std::vector<Job> jobs;
-  for (std::size_t r = 0; r < recordings.size(); ++r) jobs.push_back({base[r], r, 1});
-  std::mt19937 rng(12345);
-  std::normal_distribution<double> normal(0, 1);
-  for (int e = 0; e < options.ensemble; ++e)
-    for (std::size_t r = 0; r < recordings.size(); ++r) {
-      json doc = base[r];
-      const double angle = parameters_for(recordings[r].nominal).angle_noise;
-      for (json& b : doc["bodies"]) {
-        // A spin that turns the body by one angle-noise s.d. in 1/(2 pi) s.
-        b["omega"] = {angle * 2 * M_PI * normal(rng), angle * 2 * M_PI * normal(rng), 0.0};
-        if (b.contains("orientation")) {
-          const auto q = b["orientation"].get<std::vector<double>>();
-          Eigen::Quaterniond tilt(Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitX()) *
-                                  Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitY()));
-          const Eigen::Quaterniond turned = tilt * Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-          b["orientation"] = {turned.w(), turned.x(), turned.y(), turned.z()};
-        }
-      }
-      jobs.push_back({doc, r, static_cast<unsigned>(100 + e)});
-    }
   std::vector<Recording> nominal_runs(recordings.size());  // noise-free: the measurement check compares with them
-  const std::vector<Features> ensemble_runs = search.run(jobs, "nominal and ensemble", &nominal_runs);
+  std::vector<Features> ensemble_runs =
+      search.run(ensemble_jobs(base, recordings, options.ensemble), "nominal and ensemble", &nominal_runs);
   Features nominal;
   for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
 
@@ -842,10 +850,13 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
     d.effects.push_back(e);
     base = applied(base, f.candidate, f.value);
-    const Profile& p = profiles[best];
-    for (std::size_t i = 0; i < p.u.size(); ++i)
-      if (std::abs(to_value(f.candidate, p.u[i]) - f.value) < 1e-12 * std::max(1.0, std::abs(f.value))) current = p.features[i];
     candidates.erase(candidates.begin() + best);
+    // The scatter of chaos and noise depends on the model: a new ensemble around the improved one.
+    ensemble_runs = search.run(ensemble_jobs(base, recordings, options.ensemble),
+                               fmt::format("round {}: ensemble", round + 1));
+    current.clear();
+    for (std::size_t r = 0; r < recordings.size(); ++r) current.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+    target = make_target(measured, ensemble_runs, search, held);
   }
   d.chi2_final = target.chi2(current, false) + target.chi2(current, true);
   d.unexplained = target.mismatches(current, options.z_threshold);
