@@ -30,7 +30,8 @@ const double kMinDuration = 0.5;   // s: a shorter record holds too few events t
 const int kMinSamples = 50;
 const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
                                       // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
-const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
+const double kFarOff = 3;
+const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop          // a stated value moved by more than this factor is flagged
 
 // ------------------------------------------------------------------ catalogue
 
@@ -539,6 +540,22 @@ Model applied(const Model& base, const Candidate& c, double value) {
   return m;
 }
 
+// Scaled points of a quick profile around the nominal u0: pairs u0 +- 0.04 x 3.75^k (0.04,
+// 0.15, 0.56 of the range), nearest first, clamped to [0, 1], without repeats. Dense near the
+// nominal because a chaotic model (rocking, overturning) can be smooth in the parameter only
+// close to it: a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses.
+std::vector<double> profile_offsets(double u0, int count) {
+  std::vector<double> out;
+  for (int k = 0; static_cast<int>(out.size()) < count && k < 8; ++k)
+    for (int sign : {1, -1}) {
+      const double u = std::clamp(u0 + sign * 0.04 * std::pow(3.75, k), 0.0, 1.0);
+      const bool repeat = std::abs(u - u0) < 1e-9 ||
+                          std::any_of(out.begin(), out.end(), [&](double v) { return std::abs(u - v) < 1e-9; });
+      if (!repeat && static_cast<int>(out.size()) < count) out.push_back(u);
+    }
+  return out;
+}
+
 struct Profile {
   std::vector<double> u;          // scaled points
   std::vector<Features> features;
@@ -620,7 +637,7 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<F
 // points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
 FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
                            const Search& search, const HeldOutRule& held, const Features& current, double chi2_base,
-                           double held_base, bool held_available) {
+                           double held_base, bool held_available, int fit_count) {
   std::vector<std::pair<double, double>> curve, held_curve;
   for (int k = 0; k <= 40; ++k) {
     const double v = c.lower + (c.upper - c.lower) * k / 40.0;
@@ -638,7 +655,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
   f.chi2 = curve[best].second;
   f.delta = chi2_base - f.chi2;
   f.p_value = chi2_1_tail(f.delta);
-  f.delta_bic = f.delta - std::log(std::max(1, static_cast<int>(curve.size())));
+  f.delta_bic = f.delta - std::log(std::max(1, fit_count));
   f.standard_error = profile_sd(curve) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
@@ -787,9 +804,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       const Candidate& c = candidates[i];
       const double u0 = to_scaled(c, c.nominal);
       profiles[i].u.push_back(u0), profiles[i].features.push_back(current);
-      for (int k = 0; k < options.profile_points; ++k) {
-        const double u = (k + 0.5) / options.profile_points;
-        if (std::abs(u - u0) < 0.5 / options.profile_points) continue;  // the nominal stands for it
+      for (double u : profile_offsets(u0, options.profile_points)) {
         profiles[i].u.push_back(u);
         points.push_back(applied(base, c, to_value(c, u)));
       }
@@ -802,34 +817,43 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     for (std::size_t i = 0; i < candidates.size(); ++i)
       fits.push_back(summarise(candidates[i], profiles[i], target, chi2_base, held_base, held_available));
     for (const Candidate& c : sensor_candidates)
-      fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available));
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < fits.size(); ++i) if (fits[i].delta > fits[best].delta) best = i;
-    const bool sensor = best >= candidates.size();
-    // A physics best is refined: two rounds of 4 points inside the bracket around its minimum.
-    for (int refine = 0; refine < 2 && !sensor; ++refine) {
-      Profile& p = profiles[best];
-      const double u = to_scaled(candidates[best], fits[best].value);
-      std::vector<double> us = p.u;
-      std::sort(us.begin(), us.end());
-      const auto at = std::lower_bound(us.begin(), us.end(), u - 1e-12);
-      const double lo = at == us.begin() ? 0.0 : *(at - 1), hi = at + 1 == us.end() ? 1.0 : *(at + 1);
-      std::vector<Model> refine_points;
-      for (int k = 1; k <= 4; ++k) {
-        p.u.push_back(lo + (hi - lo) * k / 5.0);
-        refine_points.push_back(applied(base, candidates[best], to_value(candidates[best], p.u.back())));
+      fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available,
+                                target.count(false)));
+    // In order of the chi2 drop, the first candidates (at most kAttempts) are refined and tested;
+    // the first that passes is accepted. A physics candidate is refined by two rounds of 4 points
+    // inside the bracket around its minimum.
+    std::vector<std::size_t> order(fits.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fits[a].delta > fits[b].delta; });
+    std::size_t best = fits.size();
+    for (std::size_t rank = 0; rank < std::min<std::size_t>(kAttempts, order.size()) && best == fits.size(); ++rank) {
+      const std::size_t i = order[rank];
+      if (fits[i].delta <= 0) break;
+      for (int refine = 0; refine < 2 && i < candidates.size(); ++refine) {
+        Profile& p = profiles[i];
+        const double u = to_scaled(candidates[i], fits[i].value);
+        std::vector<double> us = p.u;
+        std::sort(us.begin(), us.end());
+        const auto at = std::lower_bound(us.begin(), us.end(), u - 1e-12);
+        const double lo = at == us.begin() ? 0.0 : *(at - 1), hi = at + 1 == us.end() ? 1.0 : *(at + 1);
+        std::vector<Model> refine_points;
+        for (int k = 1; k <= 4; ++k) {
+          p.u.push_back(lo + (hi - lo) * k / 5.0);
+          refine_points.push_back(applied(base, candidates[i], to_value(candidates[i], p.u.back())));
+        }
+        const std::vector<Features> more = search.evaluate(refine_points, fmt::format("round {}: refining", round + 1));
+        p.features.insert(p.features.end(), more.begin(), more.end());
+        fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available);
       }
-      const std::vector<Features> more = search.evaluate(refine_points, fmt::format("round {}: refining", round + 1));
-      p.features.insert(p.features.end(), more.begin(), more.end());
-      fits[best] = summarise(candidates[best], p, target, chi2_base, held_base, held_available);
+      // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
+      // improvement must hold on the held-out features.
+      const FittedCandidate& f = fits[i];
+      if (f.p_value < options.alpha / tried && f.delta_bic > 0 && (!held_available || f.held_out_delta > 0)) best = i;
     }
     d.rounds.push_back(fits);
+    if (best == fits.size()) break;
+    const bool sensor = best >= candidates.size();
     const FittedCandidate f = fits[best];
-    // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
-    // improvement must hold on the held-out features.
-    const bool significant = f.p_value < options.alpha / tried && f.delta_bic > 0 &&
-                             (!held_available || f.held_out_delta > 0);
-    if (!significant) break;
     std::vector<std::string> alike;
     for (const FittedCandidate& g : fits)
       if (g.candidate.name != f.candidate.name && g.delta > f.delta - kIndistinguishable && g.delta > 0)

@@ -83,7 +83,7 @@ struct MeasurementIssue {
 struct Options {
   int jobs = 2;               // simulations at a time
   int ensemble = 6;           // perturbed runs that measure the feature scatter
-  int profile_points = 5;     // grid points of each candidate's quick profile
+  int profile_points = 4;     // points of each candidate's quick profile (around the nominal)
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
   int max_effects = 3;        // iterations of the search

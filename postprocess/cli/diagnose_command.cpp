@@ -105,7 +105,10 @@ void add_diagnose_command(CLI::App& app) {
       ->check(CLI::Range(2, 50));
   sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
       ->capture_default_str()
-      ->check(CLI::Range(3, 20));
+      ->check(CLI::Range(2, 16));
+  sub->add_option("--z-threshold", o->options.z_threshold, "|z| that flags a feature as mismatched")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->add_option("--alpha", o->options.alpha, "family-wise error rate of the acceptance test")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 0.5));

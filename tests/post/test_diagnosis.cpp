@@ -62,8 +62,8 @@ diagnosis::Options fast_options(const test::TempDir& dir) {
 
 // Truth e = 0.35 (between grid points of the profile), model e = 0.6: the amplitudes after each impact differ by a
 // factor of ~2, far beyond the noise (1 mrad on 0.16 rad). Tolerance on the
-// recovered value: 0.05, the spacing of the refined grid on [0.02, 0.95]
-// (0.93 / 5 / 5 / 5 ~ 0.04 after the profile and two refinements) plus the
+// recovered value: 0.05, the spacing of the last refinement (a bracket of at
+// most 0.59 of [0.02, 0.95] cut in fifths twice: 0.02 to 0.04 in e) plus the
 // event noise calibration measured (0.009, test_calibration.cpp).
 TEST(Diagnosis, NamesAndRecoversRestitution) {
   test::TempDir dir;
@@ -82,8 +82,8 @@ TEST(Diagnosis, NamesAndRecoversRestitution) {
 
 // The centre of mass 12 mm off the axis toward the pivot edge (of b = 100 mm):
 // the block rocks on +x edge with a smaller lever arm, on -x with a larger one,
-// so the half-cycles on the two sides differ. Tolerance 3 mm: the refined grid
-// spacing (50 mm / 5 / 5 / 5 = 0.4 mm) is far finer; the rest is the
+// so the half-cycles on the two sides differ. Tolerance 3 mm: the last
+// refinement's spacing (a bracket of 0.15 of 50 mm cut in fifths twice: 0.3 mm) is far finer; the rest is the
 // trade-off with restitution, which also changes the amplitudes, allowed at
 // a quarter of the offset.
 TEST(Diagnosis, NamesAndRecoversCentreOfMassOffset) {
