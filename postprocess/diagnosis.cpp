@@ -883,6 +883,19 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     target = make_target(measured, ensemble_runs, search, held);
   }
   d.chi2_final = target.chi2(current, false) + target.chi2(current, true);
+  for (const auto& [name, f] : target.recorded) {
+    auto value = [&](const Features& sim) {
+      const auto it = sim.find(name);
+      return it == sim.end() ? f.fallback : it->second.value;
+    };
+    d.features.push_back({name, f.mode, f.time, f.value, value(nominal), value(current), target.sd.at(name),
+                          target.held_out.count(name) > 0});
+  }
+  d.recorded = measured;
+  d.z_threshold = options.z_threshold;
+  d.simulated_nominal = nominal_runs;
+  d.simulated_final = nominal_runs;
+  if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0), "improved model", &d.simulated_final);
   d.unexplained = target.mismatches(current, options.z_threshold);
   d.simulations += search.simulations;
 

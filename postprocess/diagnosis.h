@@ -120,6 +120,12 @@ struct Effect {               // an accepted candidate
   int candidates_tried = 0;   // counted in the Holm correction
 };
 
+struct FeatureRow {           // one event feature, recorded and simulated
+  std::string name, mode;
+  double time = 0, recorded = 0, nominal = 0, improved = 0, sd = 0;  // sd: of the final comparison
+  bool held_out = false;
+};
+
 struct Diagnosis {
   std::vector<MeasurementIssue> measurement;
   std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order
@@ -132,7 +138,11 @@ struct Diagnosis {
   std::vector<Mismatch> unexplained;           // still beyond the threshold after the accepted effects
   std::vector<std::string> notes;              // candidates left out and why, held-out choice, ...
   nlohmann::json improved;                     // the scenario with the effects as model options
+  std::vector<FeatureRow> features;            // every recorded feature against both models
+  std::vector<Recording> recorded;             // the recordings, corrected for accepted measurement issues
+  std::vector<Recording> simulated_nominal, simulated_final;  // noise-free runs of the model as given and improved
   std::string verdict;                         // plain-language summary
+  double z_threshold = 3;                      // Options::z_threshold used
   int simulations = 0;
 };
 

@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "commands.h"
 #include "diagnosis.h"
+#include "diagnosis_report.h"
 #include "freestand/input_error.h"
 #include "progress.h"
 #include "scenario.h"
@@ -25,6 +26,7 @@ struct DiagnoseOptions {
   std::vector<std::string> inputs;  // [SCENARIO] RECORDING...
   std::string output;               // improved scenario
   std::string json_file;            // --json
+  std::string report;               // --report (HTML)
   diagnosis::Options options;
 };
 
@@ -82,6 +84,15 @@ int diagnose_command(DiagnoseOptions& o) {
   write_file_atomically(output, d.improved.dump(2) + "\n");
   fmt::print("  improved scenario: {} ({} simulations)\n", output, d.simulations);
   if (!o.json_file.empty()) write_file_atomically(o.json_file, diagnosis::diagnosis_json(d).dump(2) + "\n");
+  if (!o.report.empty()) {
+    HtmlReport report("freestand diagnose");
+    if (!scenario_path.empty()) report.add_metadata("scenario", scenario_path);
+    for (const Recording& r : recordings) report.add_metadata("recording", r.path);
+    report.add_metadata("simulations", std::to_string(d.simulations));
+    diagnosis::add_diagnosis_sections(report, d);
+    report.write(o.report);
+    fmt::print("  report: {}\n", o.report);
+  }
   return 0;
 }
 
@@ -99,6 +110,7 @@ void add_diagnose_command(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", o->output, "improved scenario (default: SCENARIO or RECORDING stem + .diagnosed.json)");
   sub->add_option("--json", o->json_file, "write the diagnosis (effects, recalibrations, measurement issues, ...) as JSON");
+  sub->add_option("--report", o->report, "write an HTML report (verdict, before/after overlays, candidates, features)");
   sub->add_option("--jobs", o->options.jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
   sub->add_option("--ensemble", o->options.ensemble, "perturbed runs that measure the feature scatter")
       ->capture_default_str()

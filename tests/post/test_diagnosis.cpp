@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "diagnosis.h"
+#include "diagnosis_report.h"
 #include "freestand/input_error.h"
 #include "synthetic_recording.h"
 #include "temp_dir.h"
@@ -78,6 +79,14 @@ TEST(Diagnosis, NamesAndRecoversRestitution) {
   EXPECT_LT(d.chi2_final, 0.1 * d.chi2_nominal);
   EXPECT_NEAR(d.improved["interfaces"][0]["restitution"].get<double>(), d.effects.front().fit.value, 1e-12);
   EXPECT_TRUE(d.measurement.empty());  // no delay or gain was put in
+  // The report overlays the mismatched channel and lists the accepted candidate.
+  HtmlReport report("diagnosis");
+  diagnosis::add_diagnosis_sections(report, d);
+  const std::string html = report.html();
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_NE(html.find("block.rock_x"), std::string::npos);
+  EXPECT_NE(html.find("improved model"), std::string::npos);
+  EXPECT_NE(html.find("restitution[table/block]"), std::string::npos);
 }
 
 // The centre of mass 12 mm off the axis toward the pivot edge (of b = 100 mm):
