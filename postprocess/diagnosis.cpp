@@ -574,6 +574,16 @@ double profile_sd(const std::vector<std::pair<double, double>>& points) {
   return a > 0 ? 1 / std::sqrt(a) : kNaN;
 }
 
+// The test statistics of a fit: chi2 drop, boundary-corrected LRT p-value, BIC difference
+// (one parameter, n fit-set features).
+void score(FittedCandidate& f, double chi2_before, double chi2_at, int n) {
+  f.chi2 = chi2_at;
+  f.delta = chi2_before - chi2_at;
+  const double p_one = chi2_1_tail(f.delta);
+  f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
+  f.delta_bic = f.delta - std::log(std::max(1, n));
+}
+
 FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
                           double held_base, bool held_available) {
   std::vector<std::pair<double, double>> curve;
@@ -584,11 +594,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
-  f.chi2 = curve[best].second;
-  f.delta = chi2_base - f.chi2;
-  const double p_one = chi2_1_tail(f.delta);
-  f.p_value = c.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
-  f.delta_bic = f.delta - std::log(std::max(1, target.count(false)));
+  score(f, chi2_base, curve[best].second, target.count(false));
   const double sd_u = profile_sd(curve);
   f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
   f.evaluations = static_cast<int>(p.u.size());
@@ -608,25 +614,36 @@ struct HeldOutRule {
   }
 };
 
-// The recorded features with each one's s.d.: the scatter of the ensemble (runs after the
-// first recordings.size() of `runs`) plus the feature's floor, in quadrature.
-Target make_target(const std::vector<Recording>& recordings, const std::vector<Features>& runs, const Search& search,
-                   const HeldOutRule& held) {
+// Variance of feature `name` (fallback when absent) over an ensemble's members (the runs
+// after the first recordings.size() nominal ones).
+double ensemble_variance(const std::string& name, const FeatureValue& f, const std::vector<Features>& runs,
+                         std::size_t recordings, const Search& search) {
+  std::vector<double> v;
+  for (std::size_t j = recordings; j < runs.size(); ++j) {
+    if (!search.belongs(name, j % recordings)) continue;
+    const auto s = runs[j].find(name);
+    v.push_back(s == runs[j].end() ? f.fallback : s->second.value);
+  }
+  double mean = 0, var = 0;
+  for (double x : v) mean += x / v.size();
+  for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
+  return var;
+}
+
+// The recorded features with each one's s.d.: the scatter of the ensembles (their variances
+// averaged: the model before and a candidate are compared with the scatter of both) plus the
+// feature's floor, in quadrature.
+Target make_target(const std::vector<Recording>& recordings, const std::vector<std::vector<Features>>& ensembles,
+                   const Search& search, const HeldOutRule& held) {
   Target t;
   for (std::size_t r = 0; r < recordings.size(); ++r) {
     const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
     t.recorded.insert(f.begin(), f.end());
   }
   for (const auto& [name, f] : t.recorded) {
-    std::vector<double> v;
-    for (std::size_t j = recordings.size(); j < runs.size(); ++j) {
-      if (!search.belongs(name, (j % recordings.size()))) continue;
-      const auto s = runs[j].find(name);
-      v.push_back(s == runs[j].end() ? f.fallback : s->second.value);
-    }
-    double mean = 0, var = 0;
-    for (double x : v) mean += x / v.size();
-    for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
+    double var = 0;
+    for (const std::vector<Features>& runs : ensembles)
+      var += ensemble_variance(name, f, runs, recordings.size(), search) / ensembles.size();
     t.sd[name] = std::sqrt(var + f.floor * f.floor);
     if (held(name, f)) t.held_out.insert(name);
   }
@@ -643,7 +660,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
     const double v = c.lower + (c.upper - c.lower) * k / 40.0;
     std::vector<Recording> corrected = recordings;
     c.correct(corrected[c.recording], v);
-    const Target t = make_target(corrected, runs, search, held);
+    const Target t = make_target(corrected, {runs}, search, held);
     curve.push_back({k / 40.0, t.chi2(current, false)});
     held_curve.push_back({k / 40.0, t.chi2(current, true)});
   }
@@ -652,10 +669,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
-  f.chi2 = curve[best].second;
-  f.delta = chi2_base - f.chi2;
-  f.p_value = chi2_1_tail(f.delta);
-  f.delta_bic = f.delta - std::log(std::max(1, fit_count));
+  score(f, chi2_base, curve[best].second, fit_count);
   f.standard_error = profile_sd(curve) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
@@ -785,7 +799,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     held.split = times[times.size() / 2];
     d.notes.push_back(fmt::format("held out: the features after t = {:.2f} s (the later half of the events)", held.split));
   }
-  Target target = make_target(measured, ensemble_runs, search, held);
+  Target target = make_target(measured, {ensemble_runs}, search, held);
   const bool held_available = target.count(true) > 0;
   d.feature_count = static_cast<int>(target.recorded.size());
   d.chi2_nominal = target.chi2(nominal, false) + target.chi2(nominal, true);
@@ -826,6 +840,9 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fits[a].delta > fits[b].delta; });
     std::size_t best = fits.size();
+    std::vector<double> profile_delta(fits.size());  // chi2 drops of the profiles (the same scatter for all)
+    for (std::size_t i = 0; i < fits.size(); ++i) profile_delta[i] = fits[i].delta;
+    std::vector<Features> candidate_runs;  // the ensemble at the candidate tested last
     for (std::size_t rank = 0; rank < std::min<std::size_t>(kAttempts, order.size()) && best == fits.size(); ++rank) {
       const std::size_t i = order[rank];
       if (fits[i].delta <= 0) break;
@@ -845,6 +862,19 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
         p.features.insert(p.features.end(), more.begin(), more.end());
         fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available);
       }
+      profile_delta[i] = fits[i].delta;
+      // A physics candidate is judged with the scatter at its own value too (chaos depends on the
+      // model): an ensemble there, the variances of both ensembles averaged.
+      if (i < candidates.size()) {
+        candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
+                                                  options.ensemble),
+                                    fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
+        Features at;
+        for (std::size_t r = 0; r < recordings.size(); ++r) at.insert(candidate_runs[r].begin(), candidate_runs[r].end());
+        score(fits[i], pooled.chi2(current, false), pooled.chi2(at, false), pooled.count(false));
+        fits[i].held_out_delta = held_available ? pooled.chi2(current, true) - pooled.chi2(at, true) : 0.0;
+      }
       // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
       // improvement must hold on the held-out features.
       const FittedCandidate& f = fits[i];
@@ -855,12 +885,12 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     const bool sensor = best >= candidates.size();
     const FittedCandidate f = fits[best];
     std::vector<std::string> alike;
-    for (const FittedCandidate& g : fits)
-      if (g.candidate.name != f.candidate.name && g.delta > f.delta - kIndistinguishable && g.delta > 0)
-        alike.push_back(g.candidate.name);
+    for (std::size_t i = 0; i < fits.size(); ++i)
+      if (i != best && profile_delta[i] > profile_delta[best] - kIndistinguishable && profile_delta[i] > 0)
+        alike.push_back(fits[i].candidate.name);
     if (sensor) {
       f.candidate.correct(measured[f.candidate.recording], f.value);
-      target = make_target(measured, ensemble_runs, search, held);
+      target = make_target(measured, {ensemble_runs}, search, held);
       d.measurement.push_back(sensor_issue(f, alike));
       sensor_candidates.erase(sensor_candidates.begin() + (best - candidates.size()));
       continue;
@@ -875,12 +905,12 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
     d.effects.push_back(e);
     base = applied(base, f.candidate, f.value);
     candidates.erase(candidates.begin() + best);
-    // The scatter of chaos and noise depends on the model: a new ensemble around the improved one.
-    ensemble_runs = search.run(ensemble_jobs(base, recordings, options.ensemble),
-                               fmt::format("round {}: ensemble", round + 1));
+    // The scatter of chaos and noise depends on the model: from now on the ensemble around the
+    // improved one.
+    ensemble_runs = candidate_runs;
     current.clear();
     for (std::size_t r = 0; r < recordings.size(); ++r) current.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
-    target = make_target(measured, ensemble_runs, search, held);
+    target = make_target(measured, {ensemble_runs}, search, held);
   }
   d.chi2_final = target.chi2(current, false) + target.chi2(current, true);
   for (const auto& [name, f] : target.recorded) {
