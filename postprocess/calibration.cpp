@@ -666,10 +666,11 @@ TrajectoryErrors trajectory_errors(const Recording& recorded, const Recording& s
 }
 
 std::vector<Recording> simulate_recordings(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
-                                           const std::string& directory, int jobs) {
-  std::vector<std::exception_ptr> failures;
-  std::vector<Recording> out = simulate_parallel(models, recordings, directory, jobs, &failures);
-  for (const std::exception_ptr& f : failures) if (f) std::rethrow_exception(f);
+                                           const std::string& directory, int jobs,
+                                           std::vector<std::exception_ptr>* failures) {
+  std::vector<std::exception_ptr> own;
+  std::vector<Recording> out = simulate_parallel(models, recordings, directory, jobs, failures ? failures : &own);
+  for (const std::exception_ptr& f : own) if (f) std::rethrow_exception(f);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
@@ -135,9 +136,12 @@ CalibrationResult average_calibrations(const std::vector<CalibrationResult>& fit
 
 // Simulates many (model, recording) pairs, `jobs` at a time, each in its own
 // subdirectory of `directory` (removed after reading); results in input order.
+// A failed run throws, or with `failures` given leaves its exception there
+// (and an empty recording in its place).
 std::vector<Recording> simulate_recordings(const std::vector<nlohmann::json>& models,
                                            const std::vector<const Recording*>& recordings,
-                                           const std::string& directory, int jobs);
+                                           const std::string& directory, int jobs,
+                                           std::vector<std::exception_ptr>* failures = nullptr);
 
 }  // namespace freestand
 

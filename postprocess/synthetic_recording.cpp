@@ -6,9 +6,7 @@
 
 namespace freestand {
 
-Recording synthetic_recording(const nlohmann::json& document, const std::string& directory,
-                              const MeasurementNoise& noise) {
-  Recording recording = run_scenario_document(document, directory);
+void add_measurement_noise(Recording& recording, const MeasurementNoise& noise) {
   std::mt19937 generator(noise.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (RecordingChannel& c : recording.channels) {
@@ -17,6 +15,12 @@ Recording synthetic_recording(const nlohmann::json& document, const std::string&
     const bool angle = channel == "rock_x" || channel == "rock_y" || channel == "twist";
     for (double& v : c.values) v += (angle ? noise.angle : noise.length) * normal(generator);
   }
+}
+
+Recording synthetic_recording(const nlohmann::json& document, const std::string& directory,
+                              const MeasurementNoise& noise) {
+  Recording recording = run_scenario_document(document, directory);
+  add_measurement_noise(recording, noise);
   for (nlohmann::json& f : recording.nominal["interfaces"])
     for (const char* key : {"mu", "mu_s", "mu_k", "restitution", "contact_stiffness", "friction_decay"}) f.erase(key);
   if (noise.angle > 0 && noise.length > 0)  // what the experimenter states about the sensors

@@ -19,6 +19,11 @@ struct MeasurementNoise {
   unsigned seed = 1;
 };
 
+// Adds Gaussian noise to the body channels of `recording` (angles: rock,
+// twist; lengths: slide, uplift, centre); table channels and quaternions are
+// left exact.
+void add_measurement_noise(Recording& recording, const MeasurementNoise& noise);
+
 // Runs the scenario `document` (the known parameters in its interfaces and
 // `contact`) in `directory` and returns its results as a recording with
 // Gaussian noise on the body channels; the table channels are exact (the

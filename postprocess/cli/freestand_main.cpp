@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   freestand::cli::add_tosses_command(app);
   freestand::cli::add_report_command(app);
   freestand::cli::add_compare_command(app);
+  freestand::cli::add_diagnose_command(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

@@ -133,3 +133,19 @@ TEST(FreestandTool, ContactResultantsOfAStackAtRestAreItsWeights) {
   EXPECT_NEAR(lower.at("bodies_fz").back(), -100 * g, 1e-4 * 100 * g);
   EXPECT_EQ(upper.at("table_fz").back(), 0.0);  // it does not touch the table
 }
+
+// freestand diagnose refuses a recording too short to diagnose: exit status
+// 1, the file named, no verdict and no improved scenario.
+TEST(FreestandTool, DiagnoseRefusesATooShortRecording) {
+  freestand::test::TempDir dir;
+  dir.write("short.nominal.json", R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.1, 0.1, 0.3]}]})");
+  std::string csv = "t,block.rock_x\n";
+  for (int k = 0; k < 10; ++k) csv += std::to_string(0.005 * k) + ",0\n";
+  const std::string recording = dir.write("short.csv", csv);
+  std::string printed;
+  EXPECT_EQ(run(std::string(FREESTAND_TOOL) + " diagnose " + recording + " -o " + (dir / "improved.json"), &printed), 1);
+  EXPECT_NE(printed.find("short.csv"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("too short"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("Missing physics"), std::string::npos) << printed;
+  EXPECT_FALSE(fs::exists(dir / "improved.json"));
+}

@@ -1,0 +1,133 @@
+// freestand diagnose [SCENARIO] RECORDING...: locates where a simulation and
+// recordings differ, names the physics the model left out, adds it as a model
+// option, refits and shows the improvement is real (docs/diagnose.md).
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "atomic_file.h"
+#include "commands.h"
+#include "diagnosis.h"
+#include "diagnosis_report.h"
+#include "freestand/input_error.h"
+#include "progress.h"
+#include "scenario.h"
+
+namespace freestand::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct DiagnoseOptions {
+  std::vector<std::string> inputs;  // [SCENARIO] RECORDING...
+  std::string output;               // improved scenario
+  std::string json_file;            // --json
+  std::string report;               // --report (HTML)
+  diagnosis::Options options;
+};
+
+// A scenario is a .json that is not a recording's sidecar (NAME.nominal.json).
+bool is_scenario(const std::string& path) {
+  const std::string name = fs::path(path).filename().string();
+  return fs::path(path).extension() == ".json" && name.find(".nominal.json") == std::string::npos;
+}
+
+void print_candidates(const diagnosis::Diagnosis& d) {
+  for (std::size_t r = 0; r < d.rounds.size(); ++r) {
+    fmt::print("round {}: {:<44} {:>12} {:>10} {:>9} {:>9} {:>9}\n", r + 1, "candidate", "value", "delta chi2",
+               "p", "dBIC", "held-out");
+    for (const diagnosis::FittedCandidate& f : d.rounds[r])
+      fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>9.2g} {:>9.1f} {:>9.1f}\n", f.candidate.name, f.value, f.delta,
+                 f.p_value, f.delta_bic, f.held_out_delta);
+  }
+}
+
+int diagnose_command(DiagnoseOptions& o) {
+  json scenario = json::object();
+  std::string scenario_path;
+  std::vector<Recording> recordings;
+  for (const std::string& input : o.inputs) {
+    if (is_scenario(input) && scenario_path.empty() && recordings.empty()) {
+      scenario_path = input;
+      scenario = read_scenario(input).document;
+    } else {
+      recordings.push_back(read_recording(input));
+    }
+  }
+  if (recordings.empty()) throw InputError("diagnose: no recording given (NAME.csv with NAME.nominal.json, or NAME.h5)");
+  fmt::print("freestand diagnose: {} recording{} against {}, {} jobs\n", recordings.size(),
+             recordings.size() > 1 ? "s" : "", scenario_path.empty() ? "the recordings' nominal" : scenario_path,
+             o.options.jobs);
+  std::fflush(stdout);
+  std::unique_ptr<ProgressBar> bar;
+  std::string stage;
+  o.options.progress = [&](const std::string& s, long done, long total) {
+    if (s != stage) {
+      if (bar) bar->finish();
+      bar = std::make_unique<ProgressBar>("  " + s);
+      stage = s;
+    }
+    bar->update(done, total);
+  };
+  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, recordings, o.options);
+  if (bar) bar->finish();
+  fmt::print("\n{}\n", d.verdict);
+  print_candidates(d);
+  for (const std::string& n : d.notes) fmt::print("  note: {}\n", n);
+  const std::string output = !o.output.empty() ? o.output
+                             : scenario_path.empty() ? fs::path(recordings.front().path).stem().string() + ".diagnosed.json"
+                                                     : fs::path(scenario_path).stem().string() + ".diagnosed.json";
+  write_file_atomically(output, d.improved.dump(2) + "\n");
+  fmt::print("  improved scenario: {} ({} simulations)\n", output, d.simulations);
+  if (!o.json_file.empty()) write_file_atomically(o.json_file, diagnosis::diagnosis_json(d).dump(2) + "\n");
+  if (!o.report.empty()) {
+    HtmlReport report("freestand diagnose");
+    if (!scenario_path.empty()) report.add_metadata("scenario", scenario_path);
+    for (const Recording& r : recordings) report.add_metadata("recording", r.path);
+    report.add_metadata("simulations", std::to_string(d.simulations));
+    diagnosis::add_diagnosis_sections(report, d);
+    report.write(o.report);
+    fmt::print("  report: {}\n", o.report);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app) {
+  auto o = std::make_shared<DiagnoseOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "diagnose",
+      "Where and why a simulation and recordings differ (docs/diagnose.md): measurement issues per channel,\n"
+      "event features against a nominal run and an ensemble (chaos and noise), a catalogue of candidate physics\n"
+      "fitted one by one, the best accepted only when significant after counting every candidate and when it\n"
+      "holds on held-out data. Prints a verdict and writes the improved scenario.");
+  sub->add_option("inputs", o->inputs, "[SCENARIO.json] RECORDING...: the model (optional) and recordings")
+      ->required();
+  sub->add_option("-o,--output", o->output, "improved scenario (default: SCENARIO or RECORDING stem + .diagnosed.json)");
+  sub->add_option("--json", o->json_file, "write the diagnosis (effects, recalibrations, measurement issues, ...) as JSON");
+  sub->add_option("--report", o->report, "write an HTML report (verdict, before/after overlays, candidates, features)");
+  sub->add_option("--jobs", o->options.jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--ensemble", o->options.ensemble, "perturbed runs that measure the feature scatter")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 50));
+  sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 16));
+  sub->add_option("--z-threshold", o->options.z_threshold, "|z| that flags a feature as mismatched")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--alpha", o->options.alpha, "family-wise error rate of the acceptance test")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 0.5));
+  sub->add_option("--max-effects", o->options.max_effects, "effects searched for at most")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
+  sub->callback([o] { guarded([&] { return diagnose_command(*o); }); });
+}
+
+}  // namespace freestand::cli

@@ -1,0 +1,1031 @@
+#include "diagnosis.h"
+
+#include <fmt/format.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <set>
+
+#include "calibration.h"
+#include "comparison.h"
+#include "freestand/body_channels.h"
+#include "freestand/input_error.h"
+#include "freestand/scene.h"
+#include "results_analysis.h"
+#include "synthetic_recording.h"
+
+namespace freestand::diagnosis {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+using signal::kNaN;
+
+namespace {
+
+const int kEventsPerAxis = 8;      // impacts (and slips) compared per axis: later ones are small and noisy
+const double kMinDuration = 0.5;   // s: a shorter record holds too few events to tell candidates apart
+const int kMinSamples = 50;
+const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
+                                      // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
+const double kFarOff = 3;
+const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop          // a stated value moved by more than this factor is flagged
+
+// ------------------------------------------------------------------ catalogue
+
+const std::vector<CatalogueEntry> kCatalogue = {
+    {"restitution", "interface", "interfaces[i].restitution",
+     "the {} impacts lose a different share of their energy than assumed (restitution)", true},
+    {"contact_stiffness", "interface", "interfaces[i].contact_stiffness (table interface)",
+     "the {} contact is softer or stiffer than assumed", true},
+    {"interface_compliance", "interface", "interfaces[i].contact_stiffness (body-on-body interface)",
+     "the joint {} is more compliant (or stiffer) than assumed, e.g. a mortar or shim layer", true},
+    {"static_kinetic_friction", "interface", "interfaces[i].mu_s, mu_k (mu_k = r mu_s, friction_decay 0)",
+     "sliding friction at {} drops below the friction that holds the body at rest (mu_k < mu_s)", true},
+    {"velocity_weakening", "interface", "interfaces[i].mu_s, mu_k, friction_decay = 5 s/m",
+     "friction at {} weakens gradually as the sliding speed grows", true},
+    {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x", true},
+    {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y", true},
+    {"vertical_table_motion", "table", "table_motion.z = the table's x acceleration times c",
+     "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)", true},
+    {"base_not_flat", "body", "pending: base defect option (branch catalogue)",
+     "the base of {} is not flat: one corner is short", false},
+    {"edge_inset", "body", "pending: effective base inset option (branch catalogue)",
+     "{} rocks on edges inset from its geometric base edges (worn or rounded edges)", false},
+    {"table_pitch", "table", "pending: table pitch option (branch catalogue)", "the table pitched about y", false},
+    {"table_roll", "table", "pending: table roll option (branch catalogue)", "the table rolled about x", false},
+};
+
+// The interface entry of `document` between lower and upper, created when
+// the document states none.
+json& interface_entry(json& document, const std::string& lower, const std::string& upper) {
+  for (json& f : document["interfaces"])
+    if (f.value("lower", "") == lower && f.value("upper", "") == upper) return f;
+  document["interfaces"].push_back({{"lower", lower}, {"upper", upper}});
+  return document["interfaces"].back();
+}
+
+json& body_entry(json& document, const std::string& name) {
+  for (json& b : document["bodies"])
+    if (b.value("name", "") == name) return b;
+  throw InputError(fmt::format("diagnose: no body '{}' in the scenario", name));
+}
+
+bool has_channel(const Recording& r, const std::string& body, std::initializer_list<const char*> channels) {
+  for (const char* c : channels)
+    if (r.find(body + "." + c)) return true;
+  return false;
+}
+
+Scene parse_run_scene(const json& document) {
+  json scene = json::object();
+  for (const char* key : {"bodies", "interfaces", "gravity"})
+    if (document.contains(key)) scene[key] = document[key];
+  SceneDefaults defaults;
+  const json contact = document.value("contact", json::object());
+  defaults.stiffness_per_area = contact.value("stiffness", defaults.stiffness_per_area);
+  defaults.restitution = contact.value("restitution", defaults.restitution);
+  defaults.mu = contact.value("mu", defaults.mu);
+  return parse_scene(scene, "diagnose: scenario", defaults);
+}
+
+double base_area(const BodySpec& body) {
+  double area = 0;
+  for (const FaceRef& f : body.geometry.base_faces()) area += body.geometry.pieces()[f.piece].faces()[f.face].area;
+  return area;
+}
+
+void interface_candidates(const json& document, const Scene& scene, const Recording& recording,
+                          std::vector<Candidate>& out, std::vector<std::string>* skipped) {
+  for (const InterfaceSpec& f : scene.interfaces) {
+    const std::string where = f.lower + "/" + f.upper, lower = f.lower, upper = f.upper;
+    json stated = json::object();
+    for (const json& g : document.value("interfaces", json::array()))
+      if (g.value("lower", "") == lower && g.value("upper", "") == upper) stated = g;
+    const bool rocks = has_channel(recording, upper, {"rock_x", "rock_y"});
+    const bool slides = has_channel(recording, upper, {"slide_x", "slide_y"});
+    auto make = [&](const char* entry, const char* unit, double lo, double hi, double nominal, bool log, bool stat) {
+      Candidate c;
+      c.entry = entry, c.where = where, c.name = fmt::format("{}[{}]", entry, where), c.unit = unit;
+      const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == entry; });
+      c.description = fmt::format(fmt::runtime(e->description), fmt::format("'{}' on '{}'", upper, lower));
+      c.lower = lo, c.upper = hi, c.nominal = nominal, c.log_scale = log, c.stated = stat;
+      return c;
+    };
+    if (!rocks && !slides) {
+      if (skipped) skipped->push_back(fmt::format("interface {}: the recording has no rock or slide channel of '{}'",
+                                                  where, upper));
+      continue;
+    }
+    if (f.contact.restitution && rocks) {
+      Candidate c = make("restitution", "", 0.02, 0.95, *f.contact.restitution, false, stated.contains("restitution"));
+      c.apply = [lower, upper](json& d, double v) { interface_entry(d, lower, upper)["restitution"] = v; };
+      out.push_back(c);
+    }
+    const BodySpec* body = nullptr;
+    for (const BodySpec& b : scene.bodies) if (b.name == upper) body = &b;
+    const double k0 = f.contact.stiffness_per_area, area = base_area(*body);
+    Candidate k = make(lower == "table" ? "contact_stiffness" : "interface_compliance", "N/m^3", k0 / 100, k0 * 10, k0,
+                       true, stated.contains("contact_stiffness"));
+    k.apply = [lower, upper, area](json& d, double v) { interface_entry(d, lower, upper)["contact_stiffness"] = v * area; };
+    out.push_back(k);
+    if (!slides) {
+      if (skipped) skipped->push_back(fmt::format("friction candidates of {}: no slide channel of '{}'", where, upper));
+      continue;
+    }
+    const double mu_s = f.contact.mu_s;
+    for (const auto& [entry, decay] : {std::pair<const char*, double>{"static_kinetic_friction", 0.0},
+                                       std::pair<const char*, double>{"velocity_weakening", 5.0}}) {
+      const bool stat = decay > 0 ? stated.contains("friction_decay") : stated.contains("mu_k");
+      Candidate c = make(entry, "mu_k / mu_s", 0.3, 1.0, f.contact.mu_k / mu_s, false, stat);
+      c.at_boundary = c.nominal >= 1.0;  // mu_k cannot exceed mu_s: equal friction is the bound
+      c.apply = [lower, upper, mu_s, decay](json& d, double v) {
+        json& g = interface_entry(d, lower, upper);
+        g.erase("mu");
+        g["mu_s"] = mu_s, g["mu_k"] = v * mu_s, g["friction_decay"] = decay;
+      };
+      out.push_back(c);
+    }
+  }
+}
+
+void body_candidates(const Scene& scene, const json& document, const Recording& recording, std::vector<Candidate>& out,
+                     std::vector<std::string>* skipped) {
+  for (const BodySpec& b : scene.bodies) {
+    const std::string name = b.name;
+    if (!has_channel(recording, name, {"rock_x", "rock_y"})) {
+      if (skipped) skipped->push_back(fmt::format("com offset of '{}': no rock channel", name));
+      continue;
+    }
+    json stated_body = json::object();
+    for (const json& d : document["bodies"]) if (d.value("name", "") == name) stated_body = d;
+    Eigen::AlignedBox3d box;
+    for (const FaceRef& f : b.geometry.base_faces())
+      for (int v : b.geometry.pieces()[f.piece].faces()[f.face].loop) box.extend(b.geometry.pieces()[f.piece].vertices()[v]);
+    for (int axis : {0, 1}) {
+      Candidate c;
+      c.entry = axis == 0 ? "com_offset_x" : "com_offset_y";
+      c.where = name, c.name = fmt::format("{}[{}]", c.entry, name), c.unit = "m";
+      const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == c.entry; });
+      c.description = fmt::format(fmt::runtime(e->description), fmt::format("'{}'", name));
+      // A quarter of the base half-width either way: beyond that the body leans visibly at rest.
+      const double half = 0.5 * (box.max()[axis] - box.min()[axis]), centre = 0.5 * (box.max()[axis] + box.min()[axis]);
+      c.nominal = b.com[axis], c.lower = centre - 0.25 * half, c.upper = centre + 0.25 * half;
+      c.stated = stated_body.contains("com");
+      const Eigen::Vector3d com = b.com;
+      c.apply = [name, com, axis](json& d, double v) {
+        Eigen::Vector3d moved = com;
+        moved[axis] = v;
+        body_entry(d, name)["com"] = {moved.x(), moved.y(), moved.z()};
+      };
+      out.push_back(c);
+    }
+  }
+}
+
+// ------------------------------------------------------------------ features
+
+double sample_step(const std::vector<double>& t) { return signal::median_step(t); }
+
+}  // namespace
+
+const std::vector<CatalogueEntry>& catalogue() { return kCatalogue; }
+
+std::vector<Candidate> candidates_for(const json& document, const Recording& recording,
+                                      std::vector<std::string>* skipped) {
+  const Scene scene = parse_run_scene(document);
+  std::vector<Candidate> out;
+  interface_candidates(document, scene, recording, out, skipped);
+  body_candidates(scene, document, recording, out, skipped);
+  if (recording.table_channel('a', 'x') && !recording.find("table_az")) {
+    Candidate c;
+    c.entry = "vertical_table_motion", c.where = "table", c.name = "vertical_table_motion", c.unit = "az / ax";
+    c.description = kCatalogue[7].description;
+    c.lower = -0.5, c.upper = 0.5, c.nominal = 0;
+    c.apply = [](json& d, double v) {
+      json z = d["table_motion"]["x"];
+      z["column"] = "ax", z["scale"] = v;
+      d["table_motion"]["z"] = z;
+    };
+    out.push_back(c);
+  } else if (skipped) {
+    skipped->push_back("vertical table motion: needs a recorded table_ax and no recorded table_az");
+  }
+  for (const CatalogueEntry& e : kCatalogue)
+    if (!e.available && skipped) skipped->push_back(fmt::format("{}: waits for its scenario option", e.name));
+  return out;
+}
+
+Features event_features(const Recording& recording, const json& analysis_nominal) {
+  Recording r;
+  r.path = recording.path, r.time = recording.time, r.channels = recording.channels, r.nominal = analysis_nominal;
+  const analysis::AnalysisParameters p = parameters_for(analysis_nominal);
+  const double dt = sample_step(r.time), end = r.time.back();
+  Features out;
+  for (const AnalysedBody& body : analyse_recording(r)) {
+    const analysis::MotionSummary& s = body.summary;
+    const auto& names = channel_names();
+    auto add = [&](const std::string& name, double value, double time, double floor, const char* mode,
+                   double fallback) {
+      if (std::isfinite(value)) out[body.name + "." + name] = {value, std::isfinite(time) ? time : 0.0, floor, mode, fallback};
+    };
+    for (int c = 0; c < analysis::kChannelCount; ++c) {
+      if (body.motion.channels[c].empty()) continue;
+      const bool angle = c <= analysis::kTwist;
+      const double noise = angle ? p.angle_noise : p.length_noise;
+      const char* mode = c <= analysis::kRockY ? "rock" : c == analysis::kTwist ? "twist" : c == analysis::kUplift ? "uplift" : "slide";
+      const std::string ch = names[c];
+      add(ch + ".peak_max", s.peaks[c].max, s.peaks[c].t_max, noise, mode, 0);
+      if (c != analysis::kUplift) add(ch + ".peak_min", s.peaks[c].min, s.peaks[c].t_min, noise, mode, 0);
+      add(ch + ".residual", s.residual.mean[c], s.residual.window_start, noise, mode, 0);
+    }
+    for (int axis : {0, 1}) {
+      if (body.motion.channels[axis].empty()) continue;
+      const std::string ch = names[axis];
+      const analysis::RockingImpacts& ri = s.impacts[axis];
+      for (std::size_t i = 0; i < ri.impacts.size() && i < kEventsPerAxis; ++i) {
+        const analysis::Impact& im = ri.impacts[i];
+        const std::string e = fmt::format("{}.impact{}", ch, i + 1);
+        add(e + ".time", im.time, im.time, dt, "rock", end);
+        add(e + ".amplitude_after", im.amplitude_after, im.time, p.angle_noise, "rock", 0);
+        add(e + ".ratio", im.ratio, im.time, std::max(std::isfinite(im.ratio_sd) ? im.ratio_sd : 0.0, 0.01), "rock", 0);
+      }
+      add(ch + ".median_ratio", ri.median_ratio, ri.impacts.empty() ? 0 : ri.impacts.front().time, 0.01, "rock", 0);
+      if (!ri.impacts.empty())
+        add(ch + ".dominant_frequency", comparison::spectrum(body.motion.time, body.motion.channels[axis]).dominant_frequency,
+            0, 1 / (end - r.time.front()), "rock", 0);
+    }
+    double total_slip = 0;
+    for (std::size_t i = 0; i < s.slips.size(); ++i) {
+      const double slip = std::hypot(s.slips[i].slip_x, s.slips[i].slip_y);
+      if (std::isfinite(slip)) total_slip += slip;
+      if (i < kEventsPerAxis) add(fmt::format("slip{}.length", i + 1), slip, s.slips[i].onset, p.length_noise, "slide", 0);
+    }
+    if (!body.motion.channels[analysis::kSlideX].empty())
+      add("total_slip", total_slip, s.slips.empty() ? 0 : s.slips.front().onset, p.length_noise, "slide", 0);
+    for (const analysis::ModeSegment& m : s.modes)
+      if (m.mode != analysis::Mode::rest && m.mode != analysis::Mode::lost) {
+        add("motion_onset", m.start, m.start, dt, "rock", end);
+        break;
+      }
+    double gap = 0;
+    for (const analysis::Separation& sep : s.separations) gap = std::max(gap, sep.peak_gap);
+    if (!s.separations.empty()) add("peak_separation", gap, s.separations.front().start, p.length_noise, "uplift", 0);
+    if (!body.motion.channels[0].empty() && !body.motion.channels[1].empty())
+      add("residual_tilt", analysis::tilt(s.residual.mean[0], s.residual.mean[1]), s.residual.window_start,
+          p.angle_noise, "rock", 0);
+  }
+  return out;
+}
+
+namespace {
+
+// ------------------------------------------------------------------ measurement
+
+// Pooled within-segment slope of y over the rest segments (s.d. from the noise).
+std::pair<double, double> rest_drift(const analysis::BodyMotion& m, const std::vector<double>& y,
+                                     const std::vector<analysis::ModeSegment>& modes, double noise) {
+  double sxy = 0, sxx = 0;
+  for (const analysis::ModeSegment& seg : modes) {
+    if (seg.mode != analysis::Mode::rest) continue;
+    const signal::IndexRange r = signal::index_range(m.time, seg.start, seg.end);
+    double st = 0, sy = 0;
+    int n = 0;
+    for (std::size_t k = r.first; k < r.last; ++k)
+      if (std::isfinite(y[k])) st += m.time[k], sy += y[k], ++n;
+    if (n < 3) continue;
+    for (std::size_t k = r.first; k < r.last; ++k)
+      if (std::isfinite(y[k])) sxy += (m.time[k] - st / n) * (y[k] - sy / n), sxx += std::pow(m.time[k] - st / n, 2);
+  }
+  if (sxx <= 0) return {0.0, kNaN};
+  return {sxy / sxx, noise / std::sqrt(sxx)};
+}
+
+std::vector<MeasurementIssue> measurement_issues(const Recording& rec, const Recording& sim, std::vector<ChannelDivergence>& divergence) {
+  std::vector<MeasurementIssue> out;
+  const analysis::AnalysisParameters p = parameters_for(rec.nominal);
+  const double dt = sample_step(rec.time), duration = rec.time.back() - rec.time.front();
+  std::vector<AnalysedBody> bodies = analyse_recording(rec);
+  for (const AnalysedBody& body : bodies) {
+    for (int c = 0; c < analysis::kChannelCount; ++c) {
+      const std::string name = body.name + "." + channel_names()[c];
+      const RecordingChannel* simulated = sim.find(name);
+      if (body.motion.channels[c].empty() || !simulated) continue;
+      comparison::ComparisonParameters cp;
+      cp.noise = c <= analysis::kTwist ? p.angle_noise : p.length_noise;
+      const comparison::ChannelComparison cc =
+          comparison::compare_channel(rec.time, body.motion.channels[c], sim.time, simulated->values, cp);
+      divergence.push_back({name, cc.divergence_time});
+      MeasurementIssue m;
+      m.channel = name;
+      // Delay and gain on the segment before divergence, where the physics still agrees (after it,
+      // a physics mismatch would pass for a gain); at least 20 samples.
+      const double until = std::max(std::isfinite(cc.divergence_time) ? cc.divergence_time : rec.time.back(),
+                                    rec.time.front() + 20 * dt);
+      // A channel that hardly moves (peak below 20 noise s.d.) has no shape to correlate.
+      if (cc.peak_recorded > 20 * cp.noise) {
+        const signal::IndexRange r = signal::index_range(rec.time, rec.time.front(), until);
+        const std::vector<double> t(rec.time.begin() + r.first, rec.time.begin() + r.last);
+        const std::vector<double> y(body.motion.channels[c].begin() + r.first, body.motion.channels[c].begin() + r.last);
+        const comparison::OffsetGain og =
+            comparison::offset_and_gain(comparison::align(t, y, sim.time, simulated->values), sim.time, simulated->values, cp);
+        m.delay = og.offset, m.gain = og.gain, m.gain_sd = og.gain_sd, m.bias = og.bias, m.correlation = og.correlation;
+        // Worth a candidate: a lag of two samples or more (the parabolic sub-sample lag of a noisy
+        // correlation is good to a fraction of a sample), a gain off by more than 3 % and 4 s.d.,
+        // with shapes that agree (correlation 0.95). A physics mismatch before the divergence
+        // also shows as a lag or gain: the candidates' competition on the events decides.
+        m.delay_suspected = std::abs(m.delay) >= 2 * dt && m.correlation >= 0.95;
+        m.gain_suspected = std::isfinite(m.gain) && std::abs(m.gain - 1) > std::max(4 * m.gain_sd, 0.03) &&
+                           m.correlation >= 0.95;
+      }
+      const auto [drift, drift_sd] = rest_drift(body.motion, body.motion.channels[c], body.summary.modes, cp.noise);
+      m.drift = drift;
+      m.drift_significant = std::isfinite(drift_sd) && std::abs(drift) > 4 * drift_sd &&
+                            std::abs(drift) * duration > 4 * cp.noise;
+      if (m.drift_significant) m.text = fmt::format("{} drifts by {:.3g} per s at rest", name, m.drift);
+      if (m.drift_significant || m.delay_suspected || m.gain_suspected) out.push_back(m);
+    }
+  }
+  return out;
+}
+
+RecordingChannel& channel_of(Recording& r, const std::string& name) {
+  for (RecordingChannel& c : r.channels) if (c.name == name) return c;
+  throw InputError(fmt::format("{}: no channel '{}'", r.path, name));
+}
+
+// The channel with a drift at rest removed: y - drift (t - t0).
+void remove_drift(Recording& r, const MeasurementIssue& m) {
+  RecordingChannel& c = channel_of(r, m.channel);
+  for (std::size_t k = 0; k < c.values.size(); ++k) c.values[k] -= m.drift * (r.time[k] - r.time.front());
+}
+
+// Sensor delay and gain of one channel as candidates (docs/diagnose.md): a delay shifts the
+// channel back, y(t + delay); a gain divides it.
+std::vector<Candidate> measurement_candidates(const MeasurementIssue& m, std::size_t recording) {
+  std::vector<Candidate> out;
+  const std::string channel = m.channel;
+  if (m.delay_suspected) {
+    Candidate c;
+    c.entry = "sensor_delay", c.where = channel, c.name = fmt::format("sensor_delay[{}]", channel), c.unit = "s";
+    c.description = fmt::format("the sensor of {} lags (a delay in the recording, not physics)", channel);
+    c.lower = -0.1, c.upper = 0.1, c.nominal = 0, c.recording = recording;
+    c.correct = [channel](Recording& r, double delay) {
+      RecordingChannel& ch = channel_of(r, channel);
+      const std::vector<double> y = ch.values;
+      for (std::size_t k = 0; k < y.size(); ++k) ch.values[k] = signal::interpolate(r.time, y, r.time[k] + delay);
+    };
+    out.push_back(c);
+  }
+  if (m.gain_suspected) {
+    Candidate c;
+    c.entry = "sensor_gain", c.where = channel, c.name = fmt::format("sensor_gain[{}]", channel);
+    c.description = fmt::format("the sensor of {} reads high or low (a gain in the recording, not physics)", channel);
+    c.lower = 0.8, c.upper = 1.25, c.nominal = 1, c.recording = recording;
+    c.correct = [channel](Recording& r, double gain) {
+      for (double& v : channel_of(r, channel).values) v /= gain;
+    };
+    out.push_back(c);
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ statistics
+
+// P(chi2_1 > d).
+double chi2_1_tail(double d) { return d <= 0 ? 1.0 : std::erfc(std::sqrt(d / 2)); }
+
+// 99 % quantile of chi2 with n degrees of freedom (Wilson-Hilferty, within 1 % for n >= 5).
+double chi2_quantile_99(int n) {
+  const double a = 2.0 / (9.0 * n);
+  return n * std::pow(1 - a + 2.326 * std::sqrt(a), 3);
+}
+
+// ------------------------------------------------------------------ the search
+
+// A simulation: a run document for one recording, a noise seed, a label.
+struct Job {
+  json document;
+  std::size_t recording = 0;
+  unsigned seed = 1;
+};
+
+// A parameter point of the model: documents for every recording.
+using Model = std::vector<json>;
+
+class Search {
+ public:
+  Search(const std::vector<Recording>& recordings, const Options& options, std::string directory)
+      : recordings_(recordings), options_(options), directory_(std::move(directory)) {}
+
+  // Features of every job (prefixed with the recording number when there are
+  // several); a failed simulation gives no features (each falls back).
+  // With `raw`, the first raw.size() simulations are also kept as they ran (noise-free).
+  std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {
+    std::vector<Features> out;
+    const std::size_t chunk = std::max(1, options_.jobs) * 2;
+    for (std::size_t first = 0; first < jobs.size(); first += chunk) {
+      if (options_.progress) options_.progress(stage, static_cast<long>(first), static_cast<long>(jobs.size()));
+      std::vector<json> models;
+      std::vector<const Recording*> recs;
+      for (std::size_t i = first; i < std::min(jobs.size(), first + chunk); ++i)
+        models.push_back(jobs[i].document), recs.push_back(&recordings_[jobs[i].recording]);
+      std::vector<std::exception_ptr> failures;
+      std::vector<Recording> sims = simulate_recordings(
+          models, recs, (fs::path(directory_) / fmt::format("batch_{}", batches_++)).string(), options_.jobs, &failures);
+      for (std::size_t i = 0; i < sims.size(); ++i) {
+        const Job& job = jobs[first + i];
+        Features f;
+        if (raw && first + i < raw->size()) {
+          if (failures[i]) std::rethrow_exception(failures[i]);  // the nominal model must run
+          (*raw)[first + i] = sims[i];
+        }
+        if (!failures[i]) {
+          add_measurement_noise(sims[i], noise_for(recordings_[job.recording], job.seed));
+          f = prefixed(event_features(sims[i], recordings_[job.recording].nominal), job.recording);
+        }
+        out.push_back(std::move(f));
+      }
+      simulations += static_cast<int>(sims.size());
+    }
+    if (options_.progress) options_.progress(stage, static_cast<long>(jobs.size()), static_cast<long>(jobs.size()));
+    return out;
+  }
+
+  // Simulates one model (all recordings) per point with seed 1 (common random numbers: the same
+  // noise for every candidate value, so the objective changes only with the physics).
+  std::vector<Features> evaluate(const std::vector<Model>& points, const std::string& stage) {
+    std::vector<Job> jobs;
+    for (const Model& m : points)
+      for (std::size_t r = 0; r < m.size(); ++r) jobs.push_back({m[r], r, 1});
+    const std::vector<Features> per_job = run(jobs, stage);
+    std::vector<Features> out(points.size());
+    for (std::size_t i = 0, j = 0; i < points.size(); ++i)
+      for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) out[i].insert(per_job[j].begin(), per_job[j].end());
+    return out;
+  }
+
+  Features prefixed(const Features& f, std::size_t recording) const {
+    if (recordings_.size() == 1) return f;
+    Features out;
+    for (const auto& [k, v] : f) out[fmt::format("r{}:{}", recording + 1, k)] = v;
+    return out;
+  }
+
+  // Whether feature `name` belongs to recording number r.
+  bool belongs(const std::string& name, std::size_t r) const {
+    return recordings_.size() == 1 || name.rfind(fmt::format("r{}:", r + 1), 0) == 0;
+  }
+
+  static MeasurementNoise noise_for(const Recording& r, unsigned seed) {
+    const analysis::AnalysisParameters p = parameters_for(r.nominal);
+    return {p.angle_noise, p.length_noise, seed};
+  }
+
+  int simulations = 0;
+
+ private:
+  const std::vector<Recording>& recordings_;
+  const Options& options_;
+  std::string directory_;
+  int batches_ = 0;
+};
+
+// The recorded features with the s.d. of each (ensemble scatter and floor), and which are held out.
+struct Target {
+  Features recorded;
+  std::map<std::string, double> sd;
+  std::set<std::string> held_out;
+
+  double chi2(const Features& sim, bool held) const {
+    double sum = 0;
+    for (const auto& [name, f] : recorded) {
+      if (held_out.count(name) != static_cast<std::size_t>(held)) continue;
+      const auto s = sim.find(name);
+      const double v = s == sim.end() ? f.fallback : s->second.value;
+      sum += std::pow((v - f.value) / sd.at(name), 2);
+    }
+    return sum;
+  }
+  int count(bool held) const {
+    int n = 0;
+    for (const auto& [name, f] : recorded) n += held_out.count(name) == static_cast<std::size_t>(held);
+    return n;
+  }
+  std::vector<Mismatch> mismatches(const Features& sim, double threshold) const {
+    std::vector<Mismatch> out;
+    for (const auto& [name, f] : recorded) {
+      const auto s = sim.find(name);
+      const double v = s == sim.end() ? f.fallback : s->second.value;
+      const double z = (f.value - v) / sd.at(name);
+      if (std::abs(z) > threshold) out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value, v, z});
+    }
+    std::sort(out.begin(), out.end(), [](const Mismatch& a, const Mismatch& b) { return a.time < b.time; });
+    return out;
+  }
+};
+
+double to_value(const Candidate& c, double u) {
+  return c.log_scale ? std::exp(std::log(c.lower) + u * std::log(c.upper / c.lower)) : c.lower + u * (c.upper - c.lower);
+}
+double to_scaled(const Candidate& c, double v) {
+  return c.log_scale ? std::log(v / c.lower) / std::log(c.upper / c.lower) : (v - c.lower) / (c.upper - c.lower);
+}
+
+Model applied(const Model& base, const Candidate& c, double value) {
+  Model m = base;
+  for (json& d : m) c.apply(d, value);
+  return m;
+}
+
+// Scaled points of a quick profile around the nominal u0: pairs u0 +- 0.04 x 3.75^k (0.04,
+// 0.15, 0.56 of the range), nearest first, clamped to [0, 1], without repeats. Dense near the
+// nominal because a chaotic model (rocking, overturning) can be smooth in the parameter only
+// close to it: a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses.
+std::vector<double> profile_offsets(double u0, int count) {
+  std::vector<double> out;
+  for (int k = 0; static_cast<int>(out.size()) < count && k < 8; ++k)
+    for (int sign : {1, -1}) {
+      const double u = std::clamp(u0 + sign * 0.04 * std::pow(3.75, k), 0.0, 1.0);
+      const bool repeat = std::abs(u - u0) < 1e-9 ||
+                          std::any_of(out.begin(), out.end(), [&](double v) { return std::abs(u - v) < 1e-9; });
+      if (!repeat && static_cast<int>(out.size()) < count) out.push_back(u);
+    }
+  return out;
+}
+
+struct Profile {
+  std::vector<double> u;          // scaled points
+  std::vector<Features> features;
+};
+
+// Standard error (scaled units) from a parabola through the three points around the minimum:
+// chi2 rises by 1 at one s.d. NaN when not convex.
+double profile_sd(const std::vector<std::pair<double, double>>& points) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) if (points[i].second < points[best].second) best = i;
+  if (best == 0 || best + 1 >= points.size()) return kNaN;
+  const auto [x0, y0] = points[best - 1];
+  const auto [x1, y1] = points[best];
+  const auto [x2, y2] = points[best + 1];
+  const double a = ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0);
+  return a > 0 ? 1 / std::sqrt(a) : kNaN;
+}
+
+// The test statistics of a fit: chi2 drop, boundary-corrected LRT p-value, BIC difference
+// (one parameter, n fit-set features).
+void score(FittedCandidate& f, double chi2_before, double chi2_at, int n) {
+  f.chi2 = chi2_at;
+  f.delta = chi2_before - chi2_at;
+  const double p_one = chi2_1_tail(f.delta);
+  f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
+  f.delta_bic = f.delta - std::log(std::max(1, n));
+}
+
+FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
+                          double held_base, bool held_available) {
+  std::vector<std::pair<double, double>> curve;
+  for (std::size_t i = 0; i < p.u.size(); ++i) curve.push_back({p.u[i], target.chi2(p.features[i], false)});
+  std::sort(curve.begin(), curve.end());
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
+  FittedCandidate f;
+  f.candidate = c;
+  f.value = to_value(c, curve[best].first);
+  score(f, chi2_base, curve[best].second, target.count(false));
+  const double sd_u = profile_sd(curve);
+  f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
+  f.evaluations = static_cast<int>(p.u.size());
+  if (held_available) {
+    for (std::size_t i = 0; i < p.u.size(); ++i)
+      if (std::abs(p.u[i] - curve[best].first) < 1e-12) f.held_out_delta = held_base - target.chi2(p.features[i], true);
+  }
+  return f;
+}
+
+// Which features are held out: those of recordings named with `prefix`, or after `split`.
+struct HeldOutRule {
+  std::string prefix;
+  double split = 0;
+  bool operator()(const std::string& name, const FeatureValue& f) const {
+    return prefix.empty() ? f.time > split : name.rfind(prefix, 0) == 0;
+  }
+};
+
+// Variance of feature `name` (fallback when absent) over an ensemble's members (the runs
+// after the first recordings.size() nominal ones).
+double ensemble_variance(const std::string& name, const FeatureValue& f, const std::vector<Features>& runs,
+                         std::size_t recordings, const Search& search) {
+  std::vector<double> v;
+  for (std::size_t j = recordings; j < runs.size(); ++j) {
+    if (!search.belongs(name, j % recordings)) continue;
+    const auto s = runs[j].find(name);
+    v.push_back(s == runs[j].end() ? f.fallback : s->second.value);
+  }
+  double mean = 0, var = 0;
+  for (double x : v) mean += x / v.size();
+  for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
+  return var;
+}
+
+// The recorded features with each one's s.d.: the scatter of the ensembles (their variances
+// averaged: the model before and a candidate are compared with the scatter of both) plus the
+// feature's floor, in quadrature.
+Target make_target(const std::vector<Recording>& recordings, const std::vector<std::vector<Features>>& ensembles,
+                   const Search& search, const HeldOutRule& held) {
+  Target t;
+  for (std::size_t r = 0; r < recordings.size(); ++r) {
+    const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
+    t.recorded.insert(f.begin(), f.end());
+  }
+  for (const auto& [name, f] : t.recorded) {
+    double var = 0;
+    for (const std::vector<Features>& runs : ensembles)
+      var += ensemble_variance(name, f, runs, recordings.size(), search) / ensembles.size();
+    t.sd[name] = std::sqrt(var + f.floor * f.floor);
+    if (held(name, f)) t.held_out.insert(name);
+  }
+  return t;
+}
+
+// A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
+// points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
+FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
+                           const Search& search, const HeldOutRule& held, const Features& current, double chi2_base,
+                           double held_base, bool held_available, int fit_count) {
+  std::vector<std::pair<double, double>> curve, held_curve;
+  for (int k = 0; k <= 40; ++k) {
+    const double v = c.lower + (c.upper - c.lower) * k / 40.0;
+    std::vector<Recording> corrected = recordings;
+    c.correct(corrected[c.recording], v);
+    const Target t = make_target(corrected, {runs}, search, held);
+    curve.push_back({k / 40.0, t.chi2(current, false)});
+    held_curve.push_back({k / 40.0, t.chi2(current, true)});
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
+  FittedCandidate f;
+  f.candidate = c;
+  f.value = to_value(c, curve[best].first);
+  score(f, chi2_base, curve[best].second, fit_count);
+  f.standard_error = profile_sd(curve) * (c.upper - c.lower);
+  if (held_available) f.held_out_delta = held_base - held_curve[best].second;
+  f.evaluations = 0;
+  return f;
+}
+
+MeasurementIssue sensor_issue(const FittedCandidate& f, const std::vector<std::string>& alike) {
+  MeasurementIssue m;
+  m.channel = f.candidate.where;
+  const bool delay = f.candidate.entry == "sensor_delay";
+  if (delay) m.delay = f.value, m.delay_significant = true;
+  else m.gain = f.value, m.gain_sd = f.standard_error, m.gain_significant = true;
+  m.text = delay ? fmt::format("{} lags by {:.1f} ms", m.channel, 1e3 * f.value)
+                 : fmt::format("{} reads {:.1f} % {} (gain {:.3f})", m.channel, 100 * std::abs(f.value - 1),
+                               f.value > 1 ? "high" : "low", f.value);
+  m.text += fmt::format(" (misfit {:.1f} -> {:.1f}, p = {:.2g}{})", f.chi2 + f.delta, f.chi2, f.p_value,
+                        alike.empty() ? "" : fmt::format("; fits as well: {}", fmt::join(alike, ", ")));
+  return m;
+}
+
+std::string format_value(const Candidate& c, double v) {
+  return c.unit.empty() ? fmt::format("{:.3g}", v) : fmt::format("{:.3g} {}", v, c.unit);
+}
+
+std::string event_words(const Mismatch& m) {
+  const std::size_t impact = m.feature.find(".impact");
+  if (impact != std::string::npos)
+    return fmt::format("at impact {} of {}", std::stoi(m.feature.substr(impact + 7)),
+                       m.feature.substr(m.feature.find('.') + 1, impact - m.feature.find('.') - 1));
+  return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
+}
+
+// The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
+// (where the body states its orientation) and spin perturbed by the angle noise, each with
+// its own noise seed.
+std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members) {
+  std::vector<Job> jobs;
+  for (std::size_t r = 0; r < recordings.size(); ++r) jobs.push_back({base[r], r, 1});
+  std::mt19937 rng(12345);
+  std::normal_distribution<double> normal(0, 1);
+  for (int e = 0; e < members; ++e)
+    for (std::size_t r = 0; r < recordings.size(); ++r) {
+      json doc = base[r];
+      const double angle = parameters_for(recordings[r].nominal).angle_noise;
+      for (json& b : doc["bodies"]) {
+        // A spin that turns the body by one angle-noise s.d. in 1/(2 pi) s.
+        b["omega"] = {angle * 2 * M_PI * normal(rng), angle * 2 * M_PI * normal(rng), 0.0};
+        if (b.contains("orientation")) {
+          const auto q = b["orientation"].get<std::vector<double>>();
+          Eigen::Quaterniond tilt(Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitX()) *
+                                  Eigen::AngleAxisd(angle * normal(rng), Eigen::Vector3d::UnitY()));
+          const Eigen::Quaterniond turned = tilt * Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+          b["orientation"] = {turned.w(), turned.x(), turned.y(), turned.z()};
+        }
+      }
+      jobs.push_back({doc, r, static_cast<unsigned>(100 + e)});
+    }
+  return jobs;
+}
+
+}  // namespace
+
+Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recordings, const Options& options) {
+  if (recordings.empty()) throw InputError("diagnose: no recording");
+  Diagnosis d;
+  // Bad input first: no partial verdict.
+  for (const Recording& r : recordings) {
+    const double duration = r.time.empty() ? 0 : r.time.back() - r.time.front();
+    if (duration < kMinDuration || static_cast<int>(r.time.size()) < kMinSamples)
+      throw InputError(fmt::format("{}: record too short to diagnose ({:.3g} s, {} samples; need {} s and {} samples)",
+                                   r.path, duration, r.time.size(), kMinDuration, kMinSamples));
+    std::vector<std::string> names = r.body_names();
+    if (scenario.contains("bodies")) {
+      std::vector<std::string> stated;
+      for (const json& b : scenario["bodies"]) stated.push_back(b.value("name", ""));
+      std::vector<std::string> a = names, b = stated;
+      std::sort(a.begin(), a.end()), std::sort(b.begin(), b.end());
+      if (a != b)
+        throw InputError(fmt::format("{}: the recording's bodies ({}) are not the scenario's ({})", r.path,
+                                     fmt::join(names, ", "), fmt::join(stated, ", ")));
+    }
+    for (const std::string& body : names) {
+      bool any = false;
+      for (const std::string& c : channel_names()) any = any || r.find(body + "." + c);
+      if (!any)
+        throw InputError(fmt::format("{}: body '{}' has none of the channels rock_x, rock_y, twist, slide_x, slide_y, "
+                                     "uplift: nothing to compare", r.path, body));
+    }
+  }
+  const bool own_directory = options.work_directory.empty();
+  std::string directory = options.work_directory;
+  if (own_directory) {
+    std::string pattern = (fs::temp_directory_path() / "freestand_diagnose_XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw InputError("diagnose: cannot create a temporary directory");
+    directory = pattern;
+  }
+  Model base;
+  for (const Recording& r : recordings) base.push_back(recording_scenario(scenario, r, "table_motion.csv"));
+  Search search(recordings, options, directory);
+
+  // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle noise,
+  // each with its own noise realisation.
+  std::vector<Recording> nominal_runs(recordings.size());  // noise-free: the measurement check compares with them
+  std::vector<Features> ensemble_runs =
+      search.run(ensemble_jobs(base, recordings, options.ensemble), "nominal and ensemble", &nominal_runs);
+  Features nominal;
+  for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+
+  // 2. Measurement: drift at rest removed at once; suspected delays and gains become candidates.
+  std::vector<Recording> measured = recordings;
+  std::vector<Candidate> sensor_candidates;
+  for (std::size_t r = 0; r < recordings.size(); ++r)
+    for (const MeasurementIssue& m : measurement_issues(recordings[r], nominal_runs[r], d.divergence)) {
+      if (m.drift_significant) remove_drift(measured[r], m), d.measurement.push_back(m);
+      for (Candidate& c : measurement_candidates(m, r)) sensor_candidates.push_back(std::move(c));
+    }
+  // Held out: the last recording's features, or with one recording the later half of the events.
+  HeldOutRule held;
+  if (recordings.size() > 1) {
+    held.prefix = fmt::format("r{}:", recordings.size());
+    d.notes.push_back(fmt::format("held out: {} (fitted on the others)", recordings.back().path));
+  } else {
+    std::vector<double> times;
+    for (const auto& [name, f] : event_features(measured.front(), recordings.front().nominal)) times.push_back(f.time);
+    if (times.empty()) throw InputError(fmt::format("{}: no event features (nothing moves)", recordings.front().path));
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    held.split = times[times.size() / 2];
+    d.notes.push_back(fmt::format("held out: the features after t = {:.2f} s (the later half of the events)", held.split));
+  }
+  Target target = make_target(measured, {ensemble_runs}, search, held);
+  const bool held_available = target.count(true) > 0;
+  d.feature_count = static_cast<int>(target.recorded.size());
+  d.chi2_nominal = target.chi2(nominal, false) + target.chi2(nominal, true);
+  d.chi2_noise_limit = chi2_quantile_99(d.feature_count);
+  d.mismatches = target.mismatches(nominal, options.z_threshold);
+
+  // 3. Candidates: quick profile of each, the best refined, accepted when significant.
+  std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), &d.notes);
+  Features current = nominal;
+  int tried = 0;
+  for (int round = 0; round < options.max_effects && !(candidates.empty() && sensor_candidates.empty()); ++round) {
+    const double chi2_base = target.chi2(current, false), held_base = target.chi2(current, true);
+    std::vector<Model> points;
+    std::vector<Profile> profiles(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const Candidate& c = candidates[i];
+      const double u0 = to_scaled(c, c.nominal);
+      profiles[i].u.push_back(u0), profiles[i].features.push_back(current);
+      for (double u : profile_offsets(u0, options.profile_points)) {
+        profiles[i].u.push_back(u);
+        points.push_back(applied(base, c, to_value(c, u)));
+      }
+    }
+    const std::vector<Features> evaluated = search.evaluate(points, fmt::format("round {}: profiles", round + 1));
+    for (std::size_t i = 0, j = 0; i < candidates.size(); ++i)
+      for (std::size_t k = 1; k < profiles[i].u.size(); ++k) profiles[i].features.push_back(evaluated[j++]);
+    tried += static_cast<int>(candidates.size() + sensor_candidates.size());
+    std::vector<FittedCandidate> fits;
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      fits.push_back(summarise(candidates[i], profiles[i], target, chi2_base, held_base, held_available));
+    for (const Candidate& c : sensor_candidates)
+      fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available,
+                                target.count(false)));
+    // In order of the chi2 drop, the first candidates (at most kAttempts) are refined and tested;
+    // the first that passes is accepted. A physics candidate is refined by two rounds of 4 points
+    // inside the bracket around its minimum.
+    std::vector<std::size_t> order(fits.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fits[a].delta > fits[b].delta; });
+    std::size_t best = fits.size();
+    std::vector<double> profile_delta(fits.size());  // chi2 drops of the profiles (the same scatter for all)
+    for (std::size_t i = 0; i < fits.size(); ++i) profile_delta[i] = fits[i].delta;
+    std::vector<Features> candidate_runs;  // the ensemble at the candidate tested last
+    for (std::size_t rank = 0; rank < std::min<std::size_t>(kAttempts, order.size()) && best == fits.size(); ++rank) {
+      const std::size_t i = order[rank];
+      if (fits[i].delta <= 0) break;
+      for (int refine = 0; refine < 2 && i < candidates.size(); ++refine) {
+        Profile& p = profiles[i];
+        const double u = to_scaled(candidates[i], fits[i].value);
+        std::vector<double> us = p.u;
+        std::sort(us.begin(), us.end());
+        const auto at = std::lower_bound(us.begin(), us.end(), u - 1e-12);
+        const double lo = at == us.begin() ? 0.0 : *(at - 1), hi = at + 1 == us.end() ? 1.0 : *(at + 1);
+        std::vector<Model> refine_points;
+        for (int k = 1; k <= 4; ++k) {
+          p.u.push_back(lo + (hi - lo) * k / 5.0);
+          refine_points.push_back(applied(base, candidates[i], to_value(candidates[i], p.u.back())));
+        }
+        const std::vector<Features> more = search.evaluate(refine_points, fmt::format("round {}: refining", round + 1));
+        p.features.insert(p.features.end(), more.begin(), more.end());
+        fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available);
+      }
+      profile_delta[i] = fits[i].delta;
+      // A physics candidate is judged with the scatter at its own value too (chaos depends on the
+      // model): an ensemble there, the variances of both ensembles averaged.
+      if (i < candidates.size()) {
+        candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
+                                                  options.ensemble),
+                                    fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
+        Features at;
+        for (std::size_t r = 0; r < recordings.size(); ++r) at.insert(candidate_runs[r].begin(), candidate_runs[r].end());
+        score(fits[i], pooled.chi2(current, false), pooled.chi2(at, false), pooled.count(false));
+        fits[i].held_out_delta = held_available ? pooled.chi2(current, true) - pooled.chi2(at, true) : 0.0;
+      }
+      // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
+      // improvement must hold on the held-out features.
+      const FittedCandidate& f = fits[i];
+      if (f.p_value < options.alpha / tried && f.delta_bic > 0 && (!held_available || f.held_out_delta > 0)) best = i;
+    }
+    d.rounds.push_back(fits);
+    if (best == fits.size()) break;
+    const bool sensor = best >= candidates.size();
+    const FittedCandidate f = fits[best];
+    std::vector<std::string> alike;
+    for (std::size_t i = 0; i < fits.size(); ++i)
+      if (i != best && profile_delta[i] > profile_delta[best] - kIndistinguishable && profile_delta[i] > 0)
+        alike.push_back(fits[i].candidate.name);
+    if (sensor) {
+      f.candidate.correct(measured[f.candidate.recording], f.value);
+      target = make_target(measured, {ensemble_runs}, search, held);
+      d.measurement.push_back(sensor_issue(f, alike));
+      sensor_candidates.erase(sensor_candidates.begin() + (best - candidates.size()));
+      continue;
+    }
+    Effect e;
+    e.fit = f;
+    e.candidates_tried = tried;
+    e.indistinguishable = alike;
+    e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
+    const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
+    e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
+    d.effects.push_back(e);
+    base = applied(base, f.candidate, f.value);
+    candidates.erase(candidates.begin() + best);
+    // The scatter of chaos and noise depends on the model: from now on the ensemble around the
+    // improved one.
+    ensemble_runs = candidate_runs;
+    current.clear();
+    for (std::size_t r = 0; r < recordings.size(); ++r) current.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+    target = make_target(measured, {ensemble_runs}, search, held);
+  }
+  d.chi2_final = target.chi2(current, false) + target.chi2(current, true);
+  for (const auto& [name, f] : target.recorded) {
+    auto value = [&](const Features& sim) {
+      const auto it = sim.find(name);
+      return it == sim.end() ? f.fallback : it->second.value;
+    };
+    d.features.push_back({name, f.mode, f.time, f.value, value(nominal), value(current), target.sd.at(name),
+                          target.held_out.count(name) > 0});
+  }
+  d.recorded = measured;
+  d.z_threshold = options.z_threshold;
+  d.simulated_nominal = nominal_runs;
+  d.simulated_final = nominal_runs;
+  if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0), "improved model", &d.simulated_final);
+  d.unexplained = target.mismatches(current, options.z_threshold);
+  d.simulations += search.simulations;
+
+  // 4. The improved scenario: the user's, with the recording's bodies when it states none.
+  d.improved = scenario;
+  for (const char* key : {"bodies", "interfaces", "gravity"})
+    if (!d.improved.contains(key) && recordings.front().nominal.contains(key)) d.improved[key] = recordings.front().nominal[key];
+  for (const Effect& e : d.effects) e.fit.candidate.apply(d.improved, e.fit.value);
+
+  // 5. The verdict in plain words.
+  std::string v;
+  for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
+  if (!d.mismatches.empty()) {
+    const Mismatch& first = d.mismatches.front();
+    std::set<std::string> modes, bodies;
+    for (const Mismatch& m : d.mismatches) modes.insert(m.mode), bodies.insert(m.body);
+    v += fmt::format("Mismatch: {} ({}) from t = {:.2f} s, first {}; {} of {} event features beyond {} s.d.\n",
+                     fmt::join(bodies, ", "), fmt::join(modes, ", "), first.time, event_words(first),
+                     d.mismatches.size(), d.feature_count, options.z_threshold);
+  }
+  for (const Effect& e : d.effects) {
+    const FittedCandidate& f = e.fit;
+    const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
+                            : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
+                                                    : fmt::format("+- {:.2g}", f.standard_error);
+    v += fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f}, p = {:.2g} after {} candidates, "
+                     "held-out improvement {:.1f}.{}{}\n",
+                     e.verdict == "recalibrated" ? "Recalibrated" : "Missing physics", f.candidate.description,
+                     f.candidate.name, format_value(f.candidate, f.value), err, format_value(f.candidate, f.candidate.nominal),
+                     f.chi2 + f.delta, f.chi2, f.p_value, e.candidates_tried, f.held_out_delta,
+                     e.far_off ? " FAR from the stated value: check the nominal." : "",
+                     e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")));
+  }
+  const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
+  if (noise_only && d.effects.empty())
+    v += fmt::format("No missing physics found: the model matches the recording within noise and chaos "
+                     "(misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n", d.chi2_final, d.feature_count,
+                     d.chi2_noise_limit);
+  else if (noise_only)
+    v += fmt::format("Nothing significant is left (misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n",
+                     d.chi2_final, d.feature_count, d.chi2_noise_limit);
+  else {
+    v += fmt::format("Unexplained: no candidate explains the rest (misfit {:.1f} for {} features, 99 % noise limit "
+                     "{:.1f}).", d.chi2_final, d.feature_count, d.chi2_noise_limit);
+    if (!d.unexplained.empty())
+      v += fmt::format(" Mismatched from t = {:.2f} s ({}) to t = {:.2f} s.", d.unexplained.front().time,
+                       event_words(d.unexplained.front()), d.unexplained.back().time);
+    v += "\n";
+  }
+  d.verdict = v;
+  if (own_directory) {
+    std::error_code ignored;
+    fs::remove_all(directory, ignored);
+  }
+  return d;
+}
+
+json diagnosis_json(const Diagnosis& d) {
+  auto fitted = [](const FittedCandidate& f) {
+    return json{{"candidate", f.candidate.name}, {"catalogue", f.candidate.entry}, {"where", f.candidate.where},
+                {"description", f.candidate.description}, {"unit", f.candidate.unit}, {"value", f.value},
+                {"standard_error", std::isfinite(f.standard_error) ? json(f.standard_error) : json(nullptr)},
+                {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
+                {"range", {f.candidate.lower, f.candidate.upper}}, {"stated", f.candidate.stated},
+                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
+                {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations}};
+  };
+  auto mismatch = [](const Mismatch& m) {
+    return json{{"feature", m.feature}, {"body", m.body}, {"mode", m.mode}, {"time", m.time},
+                {"recorded", m.recorded}, {"simulated", m.simulated}, {"z", m.z}};
+  };
+  json out = {{"verdict", d.verdict}, {"feature_count", d.feature_count}, {"chi2_nominal", d.chi2_nominal},
+              {"chi2_final", d.chi2_final}, {"chi2_noise_limit_99", d.chi2_noise_limit},
+              {"simulations", d.simulations}, {"notes", d.notes}, {"improved_scenario", d.improved}};
+  out["measurement_issues"] = json::array();
+  for (const MeasurementIssue& m : d.measurement)
+    out["measurement_issues"].push_back({{"channel", m.channel}, {"text", m.text}, {"delay", m.delay},
+                                         {"delay_significant", m.delay_significant}, {"gain", m.gain},
+                                         {"gain_sd", m.gain_sd}, {"gain_significant", m.gain_significant},
+                                         {"bias", m.bias}, {"drift", m.drift}, {"drift_significant", m.drift_significant},
+                                         {"correlation", m.correlation}});
+  out["effects"] = out["recalibrated"] = json::array();
+  for (const Effect& e : d.effects) {
+    json j = fitted(e.fit);
+    j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable},
+              {"candidates_tried", e.candidates_tried}});
+    out[e.verdict == "recalibrated" ? "recalibrated" : "effects"].push_back(j);
+  }
+  out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();
+  for (const Mismatch& m : d.mismatches) out["mismatches"].push_back(mismatch(m));
+  for (const Mismatch& m : d.unexplained) out["unexplained"].push_back(mismatch(m));
+  for (const ChannelDivergence& c : d.divergence)
+    out["divergence"].push_back({{"channel", c.channel}, {"time", std::isfinite(c.time) ? json(c.time) : json(nullptr)}});
+  for (std::size_t r = 0; r < d.rounds.size(); ++r)
+    for (const FittedCandidate& f : d.rounds[r]) {
+      json j = fitted(f);
+      j["round"] = r + 1;
+      out["candidates"].push_back(j);
+    }
+  return out;
+}
+
+}  // namespace freestand::diagnosis

@@ -1,0 +1,160 @@
+#ifndef FREESTAND_POST_DIAGNOSIS_H
+#define FREESTAND_POST_DIAGNOSIS_H
+
+// `freestand diagnose` (docs/diagnose.md): where and why a simulation and a
+// recording differ. Measurement issues first (delay, gain, bias, drift per
+// channel); then event features of the recording against a nominal
+// simulation and a small ensemble that measures their scatter (chaos plus
+// noise); then a catalogue of candidate physics, each a real scenario option,
+// fitted by a 1-D profile, the best accepted only when significant after
+// counting every candidate tried and when the improvement holds on held-out
+// data; repeated until nothing significant is left.
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "recording.h"
+
+namespace freestand::diagnosis {
+
+// One entry of the catalogue (docs/diagnose.md, table of candidates).
+struct CatalogueEntry {
+  std::string name;          // "restitution", "com_offset_x", ...
+  std::string scope;         // "interface", "body" or "table": one candidate per interface, per body, or one
+  std::string fields;        // the scenario fields that represent the parameter
+  std::string description;   // plain words, {} = the interface or body
+  bool available = true;     // false: waits for a scenario option (docs/diagnose.md)
+};
+const std::vector<CatalogueEntry>& catalogue();
+
+// A catalogue entry instantiated on one interface or body of a scenario.
+struct Candidate {
+  std::string name;          // "restitution[table/block]", "com_offset_x[tower]"
+  std::string entry;         // catalogue name
+  std::string where;         // interface "lower/upper", body name, or "table"
+  std::string description;   // plain words
+  std::string unit;          // of the parameter
+  double lower = 0, upper = 0, nominal = 0;  // range and the value the model has
+  bool log_scale = false;
+  bool stated = false;       // the nominal states it: a fit is a recalibration, else missing physics
+  bool at_boundary = false;  // the nominal value is a bound of the admissible range (LRT boundary correction)
+  std::function<void(nlohmann::json&, double)> apply;  // sets the value in a scenario document
+  // Measurement candidates (sensor delay, gain) change the recording, not the model:
+  std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
+  std::size_t recording = 0;
+};
+
+// Candidates of every available catalogue entry for a run document (bodies,
+// interfaces, contact, table_motion as recording_scenario() makes it) whose
+// needed channels `recording` has; the reasons others were left out go to `skipped`.
+std::vector<Candidate> candidates_for(const nlohmann::json& document, const Recording& recording,
+                                      std::vector<std::string>* skipped);
+
+// An event feature of one body (docs/diagnose.md lists them).
+struct FeatureValue {
+  double value = 0;   // SI
+  double time = 0;    // s, when it happened (held-out split, localisation)
+  double floor = 0;   // s.d. it cannot be measured better than (noise, sampling)
+  std::string mode;   // rock, slide, twist, uplift
+  double fallback = 0;  // value for a simulation that lacks the event
+};
+using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.amplitude" -> value
+// Features of every body of `recording`, analysed with `analysis_nominal`'s
+// geometry and noise thresholds (the recording's nominal, for both sides).
+Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal);
+
+// A measurement issue of one channel: recorded ~ gain * simulated(t - delay) + bias + drift t.
+// The estimates come from the comparison with the nominal run; drift at rest is
+// accepted at once (physics does not move a body at rest), a delay or gain only
+// as a candidate that beats every physics candidate on the event features.
+struct MeasurementIssue {
+  std::string channel;        // "block.rock_x"
+  double delay = 0, gain = 1, gain_sd = 0, bias = 0, drift = 0;  // s, -, -, channel units, units/s
+  double correlation = 0;
+  bool delay_suspected = false, gain_suspected = false;  // worth a candidate
+  bool delay_significant = false, gain_significant = false, drift_significant = false;  // accepted
+  std::string text;           // plain words
+};
+
+struct Options {
+  int jobs = 2;               // simulations at a time
+  int ensemble = 6;           // perturbed runs that measure the feature scatter
+  int profile_points = 4;     // points of each candidate's quick profile (around the nominal)
+  double z_threshold = 3;     // |z| that flags a feature as mismatched
+  double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
+  int max_effects = 3;        // iterations of the search
+  std::string work_directory; // run directories (empty: a fresh temporary one, removed)
+  std::function<void(const std::string& stage, long done, long total)> progress;
+};
+
+struct Mismatch {             // a feature beyond the threshold
+  std::string feature, body, mode;
+  double time = 0, recorded = 0, simulated = 0, z = 0;
+};
+
+struct ChannelDivergence {
+  std::string channel;
+  double time = 0;            // s: first window of the divergence test beyond its threshold; NaN: never
+};
+
+struct FittedCandidate {
+  Candidate candidate;
+  double value = 0, standard_error = 0;  // SI; log-scale: s.e. of the natural log
+  double chi2 = 0;            // -2 log L at the value (features of the fit set)
+  double delta = 0;           // chi2 of the model before - chi2 here
+  double p_value = 1;         // LRT, boundary-corrected
+  double delta_bic = 0;       // delta - ln(n): > 0 favours the candidate
+  double held_out_delta = 0;  // improvement on the held-out features, value fitted without them
+  int evaluations = 0;
+};
+
+struct Effect {               // an accepted candidate
+  FittedCandidate fit;
+  std::string verdict;        // "recalibrated" or "missing physics"
+  bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
+  std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
+  int candidates_tried = 0;   // counted in the Holm correction
+};
+
+struct FeatureRow {           // one event feature, recorded and simulated
+  std::string name, mode;
+  double time = 0, recorded = 0, nominal = 0, improved = 0, sd = 0;  // sd: of the final comparison
+  bool held_out = false;
+};
+
+struct Diagnosis {
+  std::vector<MeasurementIssue> measurement;
+  std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order
+  std::vector<ChannelDivergence> divergence;
+  int feature_count = 0;
+  double chi2_nominal = 0, chi2_final = 0;     // -2 log L of the model as given and as improved
+  double chi2_noise_limit = 0;                 // 99 % quantile of chi2(feature_count): consistent with noise below
+  std::vector<std::vector<FittedCandidate>> rounds;  // every candidate's profile fit, per iteration
+  std::vector<Effect> effects;
+  std::vector<Mismatch> unexplained;           // still beyond the threshold after the accepted effects
+  std::vector<std::string> notes;              // candidates left out and why, held-out choice, ...
+  nlohmann::json improved;                     // the scenario with the effects as model options
+  std::vector<FeatureRow> features;            // every recorded feature against both models
+  std::vector<Recording> recorded;             // the recordings, corrected for accepted measurement issues
+  std::vector<Recording> simulated_nominal, simulated_final;  // noise-free runs of the model as given and improved
+  std::string verdict;                         // plain-language summary
+  double z_threshold = 3;                      // Options::z_threshold used
+  int simulations = 0;
+};
+
+// Diagnoses `recordings` (the last is held out when there are several; with
+// one, the later half of its events is) against `scenario` (a model: its
+// contact and simulation settings; its bodies and interfaces, when stated,
+// must name the recordings' bodies). Throws InputError for bad input.
+Diagnosis diagnose(const nlohmann::json& scenario, const std::vector<Recording>& recordings, const Options& options);
+
+// The JSON of --json FILE.
+nlohmann::json diagnosis_json(const Diagnosis& diagnosis);
+
+}  // namespace freestand::diagnosis
+
+#endif
