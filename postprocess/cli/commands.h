@@ -12,6 +12,7 @@ void add_run_command(CLI::App& app);
 void add_post_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_tosses_command(CLI::App& app);
+void add_generate_command(CLI::App& app);
 
 // Runs a subcommand's `body` (which returns its exit status), turning
 // InputError and other exceptions into one message on stderr and status 1;

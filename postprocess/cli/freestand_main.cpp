@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   freestand::cli::add_post_command(app);
   freestand::cli::add_calibrate_command(app);
   freestand::cli::add_tosses_command(app);
+  freestand::cli::add_generate_command(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }
