@@ -53,6 +53,13 @@ constexpr double kGainPerDelay = 2.0;    // 1/s
 // Magnitudes tried by the search: start, start/2, ... start/2^(kMaxHalvings).
 constexpr int kMaxHalvings = 6;
 
+// Seed of a random stream: realisation 0 is the case's own (its seed), the
+// scatter realisations 1, 2, ... are the same for every case, so cases on
+// the same base and settings share their scatter runs.
+unsigned stream_seed(unsigned case_seed, unsigned realisation, unsigned salt) {
+  return salt * (realisation == 0 ? 2654435761u + case_seed : realisation);
+}
+
 bool is_angle(const std::string& channel) { return channel == "rock_x" || channel == "rock_y" || channel == "twist"; }
 
 // ---- the catalogue ------------------------------------------------------------
@@ -314,7 +321,7 @@ class CaseRunner {
 
   json truth_document(const TruthRun& run, json* changes) const {
     json doc = base_;
-    std::mt19937 random(spec_.seed * 7919u + run.realisation);
+    std::mt19937 random(stream_seed(spec_.seed, run.realisation, 7919u));
     std::normal_distribution<double> normal(0.0, 1.0);
     for (json& b : doc["bodies"]) {
       b["nodes"] = spec_.truth.nodes;
@@ -424,7 +431,8 @@ Recording measure(const Recording& truth, const CaseSpec& spec, unsigned realisa
   const SensorModel& s = spec.sensors;
   const double fine_step = 1.0 / (spec.sampling_hz * s.oversample);
   const double cutoff = s.lowpass_hz > 0 ? s.lowpass_hz : spec.sampling_hz / 4;
-  std::mt19937 gain_random(spec.seed * 104729u + realisation), noise_random(spec.seed * 1299709u + realisation);
+  std::mt19937 gain_random(stream_seed(spec.seed, realisation, 104729u)),
+      noise_random(stream_seed(spec.seed, realisation, 1299709u));
   std::normal_distribution<double> normal(0.0, 1.0);
   Recording out;
   for (std::size_t k = 0; k < truth.time.size(); k += s.oversample) out.time.push_back(truth.time[k]);
