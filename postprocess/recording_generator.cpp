@@ -723,6 +723,11 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
         "case '{}': effect {} is not concealed at magnitude {} {} (RMS error change {:.3g} m, scatter {:.3g} m){}",
         spec.name, effect, tried.back().magnitude, info->info.unit, tried.back().change, scatter,
         spec.effect.magnitude > 0 ? ": give a smaller magnitude, or none to search" : ""));
+  if (info && tried.back().effect_rms == 0)
+    throw InputError(fmt::format(
+        "case '{}': effect {} left the truth unchanged (identical channels): the motion does not exercise it, or "
+        "this build ignores the option it sets{}",
+        spec.name, effect, effect == "corner_gap" || effect == "edge_inset" ? " (the body 'base' option)" : ""));
   out.recording = chosen;
 
   json attempts = json::array();
