@@ -50,8 +50,9 @@ constexpr double kFrictionDecay = 10.0;  // s/m
 // sensor_delay_gain: the body channels' gain deviation per second of delay
 // (2 % at 10 ms), so that the search shrinks both together.
 constexpr double kGainPerDelay = 2.0;    // 1/s
-// Magnitudes tried by the search: start, start/2, ... start/2^(kMaxHalvings).
-constexpr int kMaxHalvings = 6;
+// Magnitudes tried by the search: start, start/2, ... start/2^(kMaxHalvings)
+// (friction on a sliding block is concealed only below ~1/100 of the start).
+constexpr int kMaxHalvings = 10;
 
 // Seed of a random stream: realisation 0 is the case's own (its seed), the
 // scatter realisations 1, 2, ... are the same for every case, so cases on

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
+#include <set>
 
 #include "atomic_file.h"
 #include "commands.h"
@@ -26,13 +28,37 @@ struct GenerateOptions {
   bool keep_going = false;
 };
 
+// A listing written by an earlier run (empty when there is none), so that
+// generating some cases again keeps the others listed.
+nlohmann::json read_listing(const fs::path& path) {
+  std::ifstream in(path);
+  const nlohmann::json listing = in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json::object();
+  return listing.is_object() ? listing : nlohmann::json::object();
+}
+
+// `earlier` without the cases generated now (`done`), then `now`.
+nlohmann::json merged(const nlohmann::json& earlier, const nlohmann::json& now, const std::set<std::string>& done,
+                      const char* key) {
+  nlohmann::json out = nlohmann::json::array();
+  if (earlier.is_array())
+    for (const nlohmann::json& entry : earlier) {
+      std::string name = entry.value(key, "");
+      if (std::string(key) == "recording") name = name.substr(0, name.rfind(".csv"));
+      if (!done.count(name)) out.push_back(entry);
+    }
+  for (const nlohmann::json& entry : now) out.push_back(entry);
+  return out;
+}
+
 int generate(const GenerateOptions& o) {
   const std::vector<CaseSpec> cases = read_case_file(o.cases);
   const std::string cache = o.cache.empty() ? (fs::path(o.answers) / "runs").string() : o.cache;
   nlohmann::json manifest = nlohmann::json::array(), answers = nlohmann::json::array(),
                  failed = nlohmann::json::array();
+  std::set<std::string> done;
   for (const CaseSpec& spec : cases) {
     if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), spec.name) == o.only.end()) continue;
+    done.insert(spec.name);
     fmt::print("freestand generate: {} ({})\n", spec.name, spec.effect.name);
     std::fflush(stdout);
     try {
@@ -58,12 +84,18 @@ int generate(const GenerateOptions& o) {
     }
   }
   fs::create_directories(o.recordings);
-  write_file_atomically((fs::path(o.recordings) / "manifest.json").string(),
-                        nlohmann::json{{"recordings", manifest}, {"format", "../shared/recording-format.md"}}.dump(2) +
-                            "\n");
-  write_file_atomically((fs::path(o.answers) / "answers.json").string(),
-                        nlohmann::json{{"cases", answers}, {"failed", failed}}.dump(2) + "\n");
-  fmt::print("freestand generate: {} recordings in {}, answer keys in {}{}\n", manifest.size(), o.recordings,
+  fs::create_directories(o.answers);
+  const fs::path manifest_file = fs::path(o.recordings) / "manifest.json", answers_file = fs::path(o.answers) / "answers.json";
+  nlohmann::json old_manifest = read_listing(manifest_file), old_answers = read_listing(answers_file);
+  write_file_atomically(manifest_file.string(),
+                        nlohmann::json{{"recordings", merged(old_manifest["recordings"], manifest, done, "recording")},
+                                       {"format", "../shared/recording-format.md"}}
+                                .dump(2) + "\n");
+  write_file_atomically(answers_file.string(),
+                        nlohmann::json{{"cases", merged(old_answers["cases"], answers, done, "case")},
+                                       {"failed", merged(old_answers["failed"], failed, done, "case")}}
+                                .dump(2) + "\n");
+  fmt::print("freestand generate: {} recordings made in {}, answer keys in {}{}\n", manifest.size(), o.recordings,
              o.answers, failed.empty() ? "" : fmt::format(", {} cases failed (listed in answers.json)", failed.size()));
   return 0;
 }
