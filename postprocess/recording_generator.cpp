@@ -780,8 +780,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
   return out;
 }
 
-void write_case(const GeneratedCase& generated, const std::string& name, const std::string& recordings,
-                const std::string& answers) {
+void check_folders_apart(const std::string& recordings, const std::string& answers) {
   const fs::path rec = fs::weakly_canonical(fs::absolute(recordings)), ans = fs::weakly_canonical(fs::absolute(answers));
   auto inside = [](const fs::path& a, const fs::path& b) {  // a is b or below it
     const fs::path relative = a.lexically_relative(b);
@@ -790,6 +789,12 @@ void write_case(const GeneratedCase& generated, const std::string& name, const s
   if (inside(rec, ans) || inside(ans, rec))
     fail(answers, fmt::format("the answer folder must not be the recording folder {} nor hold it or lie in it",
                               recordings));
+}
+
+void write_case(const GeneratedCase& generated, const std::string& name, const std::string& recordings,
+                const std::string& answers) {
+  check_folders_apart(recordings, answers);
+  const fs::path rec(recordings), ans(answers);
   fs::create_directories(rec);
   fs::create_directories(ans);
   write_recording((rec / name).string(), generated.recording);

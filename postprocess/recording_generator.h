@@ -102,9 +102,12 @@ struct GeneratedCase {
 // InputError when no tried magnitude is concealed or a given one is not.
 GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int jobs);
 
+// InputError unless the two folders differ and neither holds the other, so
+// an answer key never sits beside or below the recordings.
+void check_folders_apart(const std::string& recordings, const std::string& answers);
+
 // Writes RECORDINGS/NAME.csv + NAME.nominal.json, ANSWERS/NAME.answer.json and
-// ANSWERS/NAME.model.csv (+ nominal). The two folders must differ and neither
-// may hold the other, so the key never sits beside the recording.
+// ANSWERS/NAME.model.csv (+ nominal), after check_folders_apart.
 void write_case(const GeneratedCase& generated, const std::string& name, const std::string& recordings,
                 const std::string& answers);
 

@@ -51,6 +51,7 @@ nlohmann::json merged(const nlohmann::json& earlier, const nlohmann::json& now, 
 }
 
 int generate(const GenerateOptions& o) {
+  check_folders_apart(o.recordings, o.answers);  // before any simulation
   const std::vector<CaseSpec> cases = read_case_file(o.cases);
   const std::string cache = o.cache.empty() ? (fs::path(o.answers) / "runs").string() : o.cache;
   nlohmann::json manifest = nlohmann::json::array(), answers = nlohmann::json::array(),

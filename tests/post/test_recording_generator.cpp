@@ -71,7 +71,10 @@ TEST(RecordingGenerator, BadCasesAreReportedByField) {
   json typo = base;
   typo["sensors"] = {{"angel", 1e-3}};
   EXPECT_THROW(parse_case(typo, dir.path().string(), "cases.json: cases[0]"), InputError);
-  EXPECT_THROW(write_case({}, "c", dir / "recordings", dir / "recordings/keys"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings", dir / "recordings/keys"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings/keys/..", dir / "recordings"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings", dir.path().string()), InputError);
+  EXPECT_NO_THROW(check_folders_apart(dir / "recordings", dir / "answers"));
 }
 
 json read_json(const std::string& path) {
