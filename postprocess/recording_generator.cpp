@@ -74,36 +74,36 @@ struct Effect {
 
 const std::vector<Effect>& effects() {
   static const std::vector<Effect> list = {
-      {{"com_eccentricity", "m", 0.04, "the target body's centre of mass moved by the magnitude along +x of its frame"},
+      {{"com_eccentricity", "m", 0.04, 0.08, "the target body's centre of mass moved by the magnitude along +x of its frame"},
        Acts::kPhysics},
-      {{"restitution", "1", 0.4, "every interface's restitution raised by the magnitude (at most 1)"}, Acts::kPhysics},
-      {{"interface_stiffness", "1", 9.0,
+      {{"restitution", "1", 0.4, 0.8, "every interface's restitution raised by the magnitude (at most 1)"}, Acts::kPhysics},
+      {{"interface_stiffness", "1", 9.0, 99.0,
         "the bottom body's table interface stiffness divided by (1 + magnitude): a more compliant contact"},
        Acts::kPhysics},
-      {{"static_kinetic_friction", "1", 0.2,
+      {{"static_kinetic_friction", "1", 0.2, 0.2,
         "every interface: mu_s = nominal mu, mu_k = mu - magnitude, an abrupt drop at breakaway"},
        Acts::kPhysics},
-      {{"velocity_friction", "1", 0.2,
+      {{"velocity_friction", "1", 0.2, 0.2,
         fmt::format("every interface: mu(v) = mu_k + (mu - mu_k) exp(-{} s/m v), mu_k = mu - magnitude",
                     kFrictionDecay)},
        Acts::kPhysics},
-      {{"corner_gap", "m", 0.004,
+      {{"corner_gap", "m", 0.004, 0.016,
         "the target body's base corner at +x +y short of the base plane by the magnitude (body 'base' option)"},
        Acts::kPhysics},
-      {{"edge_inset", "m", 0.02,
+      {{"edge_inset", "m", 0.02, 0.08,
         "the target body's base edges rounded or crushed: base contact moved inward by the magnitude (body 'base' "
         "option)"},
        Acts::kPhysics},
-      {{"table_vertical", "1", 0.2,
+      {{"table_vertical", "1", 0.2, 0.8,
         "the table also moves vertically, a_z = magnitude * a_x (actuator crosstalk); not in the recorded channels"},
        Acts::kTable},
-      {{"table_pitch", "rad/m", 0.02,
+      {{"table_pitch", "rad/m", 0.02, 0.08,
         "the table pitches, pitch acceleration = magnitude * a_x (table_motion.pitch); not in the recorded channels"},
        Acts::kTable},
-      {{"pedestal_compliance", "1", 9.0,
+      {{"pedestal_compliance", "1", 9.0, 99.0,
         "the interface under the top body of a stack (pedestal-tower) stiffness divided by (1 + magnitude)"},
        Acts::kPhysics},
-      {{"sensor_delay_gain", "s", 0.02,
+      {{"sensor_delay_gain", "s", 0.02, 0.08,
         fmt::format("body channels delayed by the magnitude against the table channels and scaled by 1 + {} /s * "
                     "magnitude",
                     kGainPerDelay)},
@@ -293,7 +293,8 @@ struct TruthRun {
 
 class CaseRunner {
  public:
-  CaseRunner(const CaseSpec& spec, std::string cache) : spec_(spec), cache_(fs::absolute(cache).lexically_normal().string()) {
+  CaseRunner(const CaseSpec& spec, const std::string& cache)
+      : spec_(spec), cache_(fs::absolute(cache).lexically_normal().string()) {
     std::ifstream in(spec.scenario);
     if (!in) fail(spec.scenario, "cannot open the scenario file");
     base_ = json::parse(in, nullptr, false);
@@ -306,7 +307,7 @@ class CaseRunner {
     scene_ = parse_model(base_, spec.scenario);
     const Roles r = roles(scene_);
     target_ = spec.effect.body.empty() ? r.top : spec.effect.body;
-    body_spec(scene_, target_);
+    body_spec(scene_, target_);  // an unknown target body fails here, before any run
     command_ = table_command(spec.motion);
     duration_ = spec.motion.at("duration").get<double>();
   }
@@ -485,9 +486,12 @@ json nominal_sidecar(const json& scenario, const CaseSpec& spec) {
   return nominal;
 }
 
+// A magnitude tried: the recording with the effect and how it fares.
 struct Verdict {
   double magnitude = 0.0;
-  double error_with = 0.0, error_without = 0.0, change = 0.0, effect_rms = 0.0;
+  Recording recording;
+  nlohmann::json changes;      // what the effect changed, for the answer key
+  double error_with = 0.0, change = 0.0, effect_rms = 0.0;
   bool concealed = false;
 };
 
@@ -683,59 +687,79 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
   const Recording without = recorded(base[1], 0, {}, &gains);
   const double error_without = global_rms_error(without, out.model);
 
-  // Magnitudes: the one given, or start, start/2, ... tried `jobs` at a time.
-  std::vector<double> candidates;
-  if (info && spec.effect.magnitude > 0) candidates = {spec.effect.magnitude};
-  else if (info) for (int h = 0; h <= kMaxHalvings; ++h) candidates.push_back(info->info.start / std::pow(2.0, h));
-  std::vector<Verdict> tried;
-  json changes = json::object();
-  Recording chosen = without;
-  for (std::size_t first = 0; first < candidates.size() && !(tried.size() && tried.back().concealed);) {
-    const std::size_t last = std::min(candidates.size(), first + std::max(1, jobs));
-    std::vector<json> runs, batch_changes(last - first);
-    for (std::size_t j = first; j < last; ++j)
-      runs.push_back(physical ? runner.truth_document({0, candidates[j]}, &batch_changes[j - first]) : documents[1]);
+  // Verdicts on magnitudes, simulated `jobs` at a time.
+  auto evaluate = [&](const std::vector<double>& magnitudes) {
+    std::vector<json> runs, changes(magnitudes.size());
+    for (std::size_t j = 0; j < magnitudes.size(); ++j)
+      runs.push_back(physical ? runner.truth_document({0, magnitudes[j]}, &changes[j]) : documents[1]);
     const std::vector<Recording> truths = runner.run(runs, jobs);
-    for (std::size_t j = first; j < last; ++j) {
-      Measurement m;
-      if (!physical) m.delay = candidates[j], m.body_gain = 1 + kGainPerDelay * candidates[j];
-      Verdict v;
-      v.magnitude = candidates[j];
-      const Recording with = recorded(truths[j - first], 0, m, nullptr);
-      v.error_with = global_rms_error(with, out.model);
-      v.error_without = error_without;
+    std::vector<Verdict> verdicts;
+    for (std::size_t j = 0; j < magnitudes.size(); ++j) {
+      Measurement m, clean_without;
+      if (!physical) {
+        m.delay = magnitudes[j], m.body_gain = 1 + kGainPerDelay * magnitudes[j];
+        changes[j] = {{"delay_s", m.delay}, {"body_gain", m.body_gain}};
+      }
+      Verdict v{magnitudes[j], recorded(truths[j], 0, m, nullptr), changes[j]};
+      v.error_with = global_rms_error(v.recording, out.model);
       v.change = v.error_with - error_without;
-      Measurement clean = m, clean_without;
+      Measurement clean = m;
       clean.noise = clean_without.noise = false;
-      v.effect_rms = global_rms_error(recorded(truths[j - first], 0, clean, nullptr),
-                                      recorded(base[1], 0, clean_without, nullptr));
+      v.effect_rms =
+          global_rms_error(recorded(truths[j], 0, clean, nullptr), recorded(base[1], 0, clean_without, nullptr));
       v.concealed = std::abs(v.change) <= scatter;
-      tried.push_back(v);
-      if (v.concealed) {
-        chosen = with;
-        changes = physical ? batch_changes[j - first] : json{{"delay_s", m.delay}, {"body_gain", m.body_gain}};
-        break;
+      verdicts.push_back(std::move(v));
+    }
+    return verdicts;
+  };
+  // The given magnitude; or start, start/2, ... down to the first concealed
+  // one, and when that is start itself, 2 start, 4 start, ... up to the
+  // catalogue's maximum while concealed. `jobs` magnitudes per batch.
+  std::vector<Verdict> tried;
+  const Verdict* chosen = nullptr;
+  auto climb = [&](const std::vector<double>& ladder, bool down) {
+    for (std::size_t first = 0; first < ladder.size(); first += std::max(1, jobs)) {
+      const std::size_t last = std::min(ladder.size(), first + std::max(1, jobs));
+      for (Verdict& v : evaluate(std::vector<double>(ladder.begin() + first, ladder.begin() + last)))
+        tried.push_back(std::move(v));
+      for (std::size_t j = tried.size() - (last - first); j < tried.size(); ++j) {
+        if (tried[j].concealed && !down) chosen = &tried[j];
+        if (tried[j].concealed == down) {
+          if (down) chosen = &tried[j];
+          return;
+        }
       }
     }
-    first = last;
+  };
+  tried.reserve(64);  // `chosen` points into it
+  if (info && spec.effect.magnitude > 0) {
+    climb({spec.effect.magnitude}, true);
+  } else if (info) {
+    std::vector<double> down, up;
+    for (int h = 0; h <= kMaxHalvings; ++h) down.push_back(info->info.start / std::pow(2.0, h));
+    for (double m = 2 * info->info.start; m <= info->info.max * (1 + 1e-12); m *= 2) up.push_back(m);
+    climb(down, true);
+    if (chosen == &tried.front()) climb(up, false);
   }
-  if (info && !tried.back().concealed)
+  if (info && !chosen)
     throw InputError(fmt::format(
         "case '{}': effect {} is not concealed at magnitude {} {} (RMS error change {:.3g} m, scatter {:.3g} m){}",
         spec.name, effect, tried.back().magnitude, info->info.unit, tried.back().change, scatter,
         spec.effect.magnitude > 0 ? ": give a smaller magnitude, or none to search" : ""));
-  if (info && tried.back().effect_rms == 0)
+  if (chosen && chosen->effect_rms == 0)
     throw InputError(fmt::format(
         "case '{}': effect {} left the truth unchanged (identical channels): the motion does not exercise it, or "
         "this build ignores the option it sets{}",
         spec.name, effect, effect == "corner_gap" || effect == "edge_inset" ? " (the body 'base' option)" : ""));
-  out.recording = chosen;
+  Verdict none{0.0, without, json::object()};
+  none.error_with = error_without, none.concealed = true;
+  const Verdict& final_verdict = chosen ? *chosen : none;
+  out.recording = final_verdict.recording;
 
   json attempts = json::array();
   for (const Verdict& v : tried)
     attempts.push_back({{"magnitude", v.magnitude}, {"error_with_effect", v.error_with}, {"change", v.change},
                         {"effect_rms", v.effect_rms}, {"concealed", v.concealed}});
-  const Verdict final_verdict = tried.empty() ? Verdict{0, error_without, error_without, 0, 0, true} : tried.back();
   out.answer = {
       {"case", spec.name},
       {"effect",
@@ -744,7 +768,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
         {"unit", info ? info->info.unit : ""},
         {"what", info ? info->info.what : "no effect: the truth differs from the model only in fidelity"},
         {"target_body", runner.target()},
-        {"truth_changes", changes}}},
+        {"truth_changes", final_verdict.changes}}},
       {"concealment",
        {{"criterion",
          "|RMS error of the recording with the effect - RMS error of the same recording without it| <= sd of the RMS "

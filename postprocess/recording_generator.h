@@ -55,7 +55,7 @@ struct Perturbation {
 
 // The concealed effect: a catalogue name (effect_catalogue()) or "none".
 // magnitude < 0: the largest concealed magnitude is searched from the
-// catalogue's start value by halving.
+// catalogue's start value by halving (or doubling up to its max).
 struct ConcealedEffect {
   std::string name = "none";
   double magnitude = -1.0;
@@ -80,6 +80,7 @@ struct EffectInfo {
   std::string name;
   std::string unit;            // of the magnitude
   double start = 0.0;          // first magnitude tried by the search
+  double max = 0.0;            // the search goes up (doubling) to this when start is concealed
   std::string what;            // one line
 };
 const std::vector<EffectInfo>& effect_catalogue();
