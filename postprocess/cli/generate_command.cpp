@@ -51,9 +51,10 @@ nlohmann::json merged(const nlohmann::json& earlier, const nlohmann::json& now, 
 }
 
 int generate(const GenerateOptions& o) {
-  check_folders_apart(o.recordings, o.answers);  // before any simulation
-  const std::vector<CaseSpec> cases = read_case_file(o.cases);
   const std::string cache = o.cache.empty() ? (fs::path(o.answers) / "runs").string() : o.cache;
+  check_folders_apart(o.recordings, o.answers);  // before any simulation; the runs hold the truth too
+  check_folders_apart(o.recordings, cache);
+  const std::vector<CaseSpec> cases = read_case_file(o.cases);
   nlohmann::json manifest = nlohmann::json::array(), answers = nlohmann::json::array(),
                  failed = nlohmann::json::array();
   std::set<std::string> done;
