@@ -9,7 +9,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   libeigen3-dev libhdf5-dev hdf5-tools libvtk9-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
+  libnlopt-cxx-dev libliquid-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
   libmujoco-dev  # used only by bench/ (MuJoCo 2.2.2, the peer in bench/time_to_accuracy.sh)
   python3-h5py python3-numpy
   paraview xvfb xauth chromium

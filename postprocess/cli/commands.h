@@ -15,6 +15,7 @@ void add_tosses_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
+void add_generate_command(CLI::App& app);
 
 // Runs a subcommand's `body` (which returns its exit status), turning
 // InputError and other exceptions into one message on stderr and status 1;

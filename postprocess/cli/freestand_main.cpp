@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   freestand::cli::add_report_command(app);
   freestand::cli::add_compare_command(app);
   freestand::cli::add_diagnose_command(app);
+  freestand::cli::add_generate_command(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

@@ -1,0 +1,163 @@
+// freestand generate (docs/diagnose-cases.md): the anti-alias filter against
+// the closed-form Butterworth response, and a fast subset of the diagnose
+// cases checked as recordings, for concealment and for keeping the answer apart.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "freestand/input_error.h"
+#include "recording.h"
+#include "recording_generator.h"
+#include "temp_dir.h"
+
+namespace freestand {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Steady-state amplitude of a sine of frequency f after the filter, by a
+// least-squares fit of sin and cos over the last half of 40 periods.
+double filtered_amplitude(double f, double fs, double fc, int order) {
+  const double dt = 1.0 / fs;
+  const std::size_t n = static_cast<std::size_t>(40.0 / f * fs);
+  std::vector<double> y(n);
+  for (std::size_t k = 0; k < n; ++k) y[k] = std::sin(2 * M_PI * f * k * dt);
+  const std::vector<double> out = butterworth_lowpass(y, dt, fc, order);
+  double ss = 0, cc = 0, sc = 0, ys = 0, yc = 0;
+  for (std::size_t k = n / 2; k < n; ++k) {
+    const double s = std::sin(2 * M_PI * f * k * dt), c = std::cos(2 * M_PI * f * k * dt);
+    ss += s * s, cc += c * c, sc += s * c, ys += out[k] * s, yc += out[k] * c;
+  }
+  const double det = ss * cc - sc * sc, a = (ys * cc - yc * sc) / det, b = (yc * ss - ys * sc) / det;
+  return std::hypot(a, b);
+}
+
+// The bilinear-transform Butterworth (cutoff prewarped) has exactly
+// |H(f)|^2 = 1 / (1 + (tan(pi f / fs) / tan(pi fc / fs))^(2n)). The filter's
+// coefficients are single precision (liquid-dsp), so 1e-4 relative.
+TEST(RecordingGenerator, LowpassIsTheDigitalButterworth) {
+  const double fs = 1000, fc = 50;
+  for (int order : {2, 4})
+    for (double f : {10.0, 50.0, 100.0}) {
+      const double ratio = std::tan(M_PI * f / fs) / std::tan(M_PI * fc / fs);
+      EXPECT_NEAR(filtered_amplitude(f, fs, fc, order), 1 / std::sqrt(1 + std::pow(ratio, 2 * order)), 1e-4)
+          << "order " << order << ", f " << f << " Hz";
+    }
+  // A constant stays constant: the filter starts in steady state at the first sample.
+  for (double v : butterworth_lowpass(std::vector<double>(50, 3.5), 1e-3, 50, 4)) EXPECT_NEAR(v, 3.5, 1e-12);
+}
+
+TEST(RecordingGenerator, BadCasesAreReportedByField) {
+  const test::TempDir dir;
+  const json base = {{"name", "c"}, {"scenario", "s.json"}, {"motion", {{"record", "r.AT2"}, {"duration", 2}}}};
+  json unknown = base;
+  unknown["effect"] = {{"name", "gremlins"}};
+  try {
+    parse_case(unknown, dir.path().string(), "cases.json: cases[0]");
+    FAIL() << "an unknown effect was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cases[0].effect.name: 'gremlins' is not in the catalogue"), std::string::npos)
+        << e.what();
+  }
+  json no_window = base;
+  no_window["motion"].erase("duration");
+  EXPECT_THROW(parse_case(no_window, dir.path().string(), "cases.json: cases[0]"), InputError);
+  json typo = base;
+  typo["sensors"] = {{"angel", 1e-3}};
+  EXPECT_THROW(parse_case(typo, dir.path().string(), "cases.json: cases[0]"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings", dir / "recordings/keys"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings/keys/..", dir / "recordings"), InputError);
+  EXPECT_THROW(check_folders_apart(dir / "recordings", dir.path().string()), InputError);
+  EXPECT_NO_THROW(check_folders_apart(dir / "recordings", dir / "answers"));
+}
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+// Three short cases on the single block (2.5 s of the Duzce record's strong
+// motion at 0.6 scale): none, a hidden centre-of-mass offset and a sensor
+// delay, with the magnitudes searched. About 30 s with 2 jobs.
+TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
+  const test::TempDir dir;
+  const std::string source = FREESTAND_SOURCE_DIR;
+  const json cases = {
+      {"defaults",
+       {{"scenario", source + "/inputs/scenarios/marble_block_duzce.json"},
+        {"motion",
+         {{"record", std::string(FREESTAND_SHARED_DATA) + "/groundmotions/DUZCE_BOL090.AT2"},
+          {"units", "g"}, {"scale", 0.6}, {"skip", 9.5}, {"duration", 2.5}}},
+        {"sampling_hz", 100},
+        {"perturbation", {{"runs", 3}}}}},
+      {"cases",
+       {{{"name", "block_none"}, {"effect", {{"name", "none"}}}},
+        {{"name", "block_com"}, {"effect", {{"name", "com_eccentricity"}}}},
+        {{"name", "block_delay"}, {"effect", {{"name", "sensor_delay_gain"}}}}}}};
+  const std::string case_file = dir.write("cases.json", cases.dump());
+  const std::string command = std::string(FREESTAND_TOOL) + " generate " + case_file + " -o " + (dir / "recordings") +
+                              " --answers " + (dir / "answers") + " -j 2 > " + (dir / "log.txt") + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(dir / "log.txt").rdbuf();
+
+  // The recordings' folder holds recordings and their manifest only; the
+  // manifest does not name an effect.
+  for (const auto& entry : fs::directory_iterator(dir / "recordings")) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "manifest.json" || name.size() > 4 && (name.substr(name.size() - 4) == ".csv" ||
+                                                               name.find(".nominal.json") != std::string::npos))
+        << name;
+  }
+  const std::string manifest = read_json(dir / "recordings/manifest.json").dump();
+  for (const EffectInfo& e : effect_catalogue()) EXPECT_EQ(manifest.find(e.name), std::string::npos) << e.name;
+
+  const Recording none = read_recording(dir / "recordings/block_none");
+  for (const std::string name : {"block_none", "block_com", "block_delay"}) {
+    SCOPED_TRACE(name);
+    const Recording r = read_recording(dir / ("recordings/" + name));
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    EXPECT_EQ(r.body_names(), std::vector<std::string>{"block"});
+    ASSERT_NE(r.find("table_ax"), nullptr);
+    ASSERT_NE(r.find("block.rock_x"), nullptr);
+    EXPECT_NEAR(r.time[1] - r.time[0], 0.01, 1e-9);  // sampling_hz 100
+    // The nominal states the nominal model only: the same sidecar whatever is concealed.
+    EXPECT_EQ(r.nominal, none.nominal);
+    EXPECT_FALSE(r.nominal["bodies"][0].contains("com"));
+
+    const json key = read_json(dir / ("answers/" + name + ".answer.json"));
+    const json& c = key["concealment"];
+    EXPECT_TRUE(c["concealed"].get<bool>());
+    EXPECT_LE(std::abs(c["change"].get<double>()), c["scatter"].get<double>());
+    EXPECT_GT(c["scatter"].get<double>(), 0.0);
+    // The key's error is the recording's, measured again from the files
+    // (written with 17 digits).
+    const Recording model = read_recording(dir / ("answers/" + name + ".model"));
+    EXPECT_NEAR(global_rms_error(r, model), c["error_with_effect"].get<double>(),
+                1e-9 * c["error_with_effect"].get<double>());
+    if (name == "block_none") {
+      EXPECT_EQ(c["change"].get<double>(), 0.0);
+    } else {
+      // The effect changes the channels (its noise-free size is not zero) ...
+      EXPECT_GT(c["effect_rms"].get<double>(), 0.0);
+      EXPECT_GT(key["effect"]["magnitude"].get<double>(), 0.0);
+    }
+    // The model is told the command; the recording shows what the servo
+    // table did (lag, gain error, noise), which differs by more than the
+    // accelerometer noise (0.02 m/s^2).
+    double sum = 0;
+    const std::vector<double>& commanded = model.find("table_ax")->values;
+    for (std::size_t k = 0; k < r.time.size(); ++k) sum += std::pow(r.find("table_ax")->values[k] - commanded[k], 2);
+    EXPECT_GT(std::sqrt(sum / r.time.size()), 0.05);
+  }
+  // A com offset is a body property: the truth had one, the nominal does not.
+  const json com = read_json(dir / "answers/block_com.answer.json");
+  EXPECT_NE(com["effect"]["truth_changes"]["com_truth"], com["effect"]["truth_changes"]["com_nominal"]);
+}
+
+}  // namespace
+}  // namespace freestand
