@@ -811,7 +811,8 @@ void check_folders_apart(const std::string& recordings, const std::string& answe
     return !relative.empty() && *relative.begin() != "..";
   };
   if (inside(rec, ans) || inside(ans, rec))
-    fail(answers, fmt::format("the answer folder must not be the recording folder {} nor hold it or lie in it",
+    fail(answers, fmt::format("holds what the recordings conceal, so it must be apart from their folder {} "
+                              "(not the same, not in it, not holding it)",
                               recordings));
 }
 
