@@ -10,10 +10,6 @@ namespace freestand::hdf5 {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", where, what));
-}
-
 }  // namespace
 
 Quiet::Quiet() {

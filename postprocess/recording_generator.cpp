@@ -31,10 +31,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", where, what));
-}
-
 void check_keys(const json& object, const std::set<std::string>& allowed, const std::string& where) {
   if (!object.is_object()) fail(where, "expected a JSON object");
   for (const auto& [key, value] : object.items())

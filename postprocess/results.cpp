@@ -15,10 +15,6 @@ using nlohmann::json;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", where, what));
-}
-
 // Every dataset of `group` (a path that exists), each as long as `length`.
 std::map<std::string, Series> read_group(hid_t file, const std::string& group_path, std::size_t length,
                                          const std::string& path) {

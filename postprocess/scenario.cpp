@@ -19,10 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", where, what));
-}
-
 // Keys of fix shaketable's per-axis options that a table_motion axis may set
 // (docs/fix_shaketable.md); `record` and `motion` choose the source.
 const char* const kAxisKeys[] = {"units", "format", "column", "differentiate", "scale", "pga", "skip",

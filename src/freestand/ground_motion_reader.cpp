@@ -17,9 +17,7 @@ namespace freestand {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", path, what));
-}
+using freestand::fail;  // "path: what"; the overload below adds the line
 
 [[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
   throw InputError(fmt::format("{}:{}: {}", path, line, what));

@@ -14,6 +14,11 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Throws InputError "where: what" (where: a file, "file: field", ...).
+[[noreturn]] inline void fail(const std::string& where, const std::string& what) {
+  throw InputError(where + ": " + what);
+}
+
 }  // namespace freestand
 
 #endif

@@ -14,10 +14,6 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw InputError(fmt::format("{}: {}", where, what));
-}
-
 const json& field(const json& j, const std::string& key, const std::string& where) {
   if (!j.contains(key)) fail(where, fmt::format("'{}' is missing", key));
   return j.at(key);
