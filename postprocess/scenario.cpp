@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "freestand/ground_motion_reader.h"
+#include "freestand/shake_table.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
 
@@ -64,22 +64,15 @@ std::string resolve_path(const Scenario& scenario, const std::string& path) {
   return fs::absolute(p).lexically_normal().string();
 }
 
-// fix shaketable arguments of one axis, and the record's length (s; 0 for
-// analytic motions) for the default duration.
-std::string axis_arguments(const Scenario& scenario, const std::string& axis, const json& spec,
-                           double* record_length) {
+// fix shaketable arguments of one axis.
+std::string axis_arguments(const Scenario& scenario, const std::string& axis, const json& spec) {
   const std::string where = scenario.path + ": table_motion." + axis;
   if (!spec.is_object()) fail(where, "expected an object with \"record\" or \"motion\"");
   std::string args = axis + " ";
-  *record_length = 0.0;
   if (spec.contains("record")) {
     const std::string path = resolve_path(scenario, spec.at("record").get<std::string>());
     if (path.find_first_of(" \"'#$&") != std::string::npos)
       fail(where, "record path '" + path + "' contains a space or one of \" ' # $ &: LIGGGHTS cannot take it");
-    RecordSource source{path, spec.value("format", "auto"), spec.contains("column") ? option_value(spec["column"], where) : "",
-                        spec.contains("units") ? option_value(spec["units"], where) : ""};
-    const GroundRecord record = read_ground_record(source);
-    *record_length = record.t.back() - record.t.front() - spec.value("skip", 0.0);
     args += "record " + path;
   } else if (spec.contains("motion")) {
     const std::string motion = spec.at("motion").get<std::string>();
@@ -124,6 +117,33 @@ double pass_weight(const Scene& scene) {
   for (const BodySpec& body : scene.bodies)
     if (body.nodes.layout != NodeLayout::kVertices) return 0.5;
   return 1.0;
+}
+
+// How far the table goes: the motion as fix shaketable will play it (the same
+// parser and kinematics), sampled every 10 ms, so the box holds the bodies
+// wherever the table carries them; and the motion's own length.
+struct TableTravel {
+  double reach[3] = {0, 0, 0};  // largest |displacement| per axis over the run (m)
+  double duration = 0.0;        // longest axis of the motion (s)
+};
+TableTravel table_travel(const Scenario& scenario, const std::string& table_args, double duration) {
+  TableTravel travel;
+  if (table_args.empty()) return travel;
+  std::vector<std::string> args;
+  std::istringstream words(table_args);
+  for (std::string w; words >> w;) args.push_back(w);
+  try {
+    const ShakeTable table(parse_shake_table_args(args));
+    travel.duration = table.duration();
+    const double end = duration > 0 ? duration : travel.duration;
+    for (double t = 0; t <= end + 0.01; t += 0.01) {
+      const Eigen::Vector3d d = table.at(t).displacement;
+      for (int k = 0; k < 3; ++k) travel.reach[k] = std::max(travel.reach[k], std::fabs(d[k]));
+    }
+  } catch (const InputError& e) {
+    fail(scenario.path + ": table_motion", e.what());
+  }
+  return travel;
 }
 
 }  // namespace
@@ -188,17 +208,14 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
   const Scene scene = parse_scene(run.scene, scenario.path);
 
   std::string table = "", table_height = fmt::format("{}", doc.value("table_height", 0.0));
-  double longest_record = 0.0;
-  if (doc.contains("table_motion")) {
+  if (doc.contains("table_motion"))
     for (const auto& [axis, spec] : doc.at("table_motion").items()) {
       if (axis != "x" && axis != "y" && axis != "z" && axis != "roll" && axis != "pitch")
         fail(scenario.path + ": table_motion", "axes are x, y, z, roll and pitch, not '" + axis + "'");
-      double length = 0.0;
-      table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec, &length);
-      longest_record = std::max(longest_record, length);
+      table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec);
     }
-  }
-  if (run.settings.duration <= 0) run.settings.duration = longest_record;
+  const TableTravel travel = table_travel(scenario, table, run.settings.duration);
+  if (run.settings.duration <= 0) run.settings.duration = travel.duration;
   if (!(run.settings.duration > 0))
     fail(scenario.path, "no simulation.duration, and no recorded table motion to take it from");
 
@@ -209,7 +226,8 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
       fail(scenario.path + ": contact", "unknown key '" + key + "' (see docs/scenario.md)");
     contact += " " + key + " " + option_value(value, scenario.path + ": contact." + key);
   }
-  const Extent e = body_extent(scene);
+  Extent e = body_extent(scene);
+  for (int k = 0; k < 3; ++k) e.lo[k] -= travel.reach[k], e.hi[k] += travel.reach[k];  // the bodies ride the table
   const double reach = std::max({e.hi[2] - std::min(e.lo[2], 0.0), 1.0});  // room to topple
   const bool moving = !table.empty();
 
