@@ -650,6 +650,19 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
   return t;
 }
 
+// Mean chi2 (fit or held-out set) of an ensemble's perturbed members (the runs after the
+// first `recordings` nominal ones, `recordings` runs per member).
+double mean_chi2(const Target& target, const std::vector<Features>& runs, std::size_t recordings, bool held) {
+  double sum = 0;
+  int members = 0;
+  for (std::size_t j = recordings; j + recordings <= runs.size(); j += recordings, ++members) {
+    Features member;
+    for (std::size_t r = 0; r < recordings; ++r) member.insert(runs[j + r].begin(), runs[j + r].end());
+    sum += target.chi2(member, held);
+  }
+  return members > 0 ? sum / members : 0.0;
+}
+
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
 // points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
 FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
@@ -869,11 +882,14 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
         candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
                                                   options.ensemble),
                                     fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        // The statistics are means over the perturbed members, not the seed-1 run the value was
+        // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
         const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
-        Features at;
-        for (std::size_t r = 0; r < recordings.size(); ++r) at.insert(candidate_runs[r].begin(), candidate_runs[r].end());
-        score(fits[i], pooled.chi2(current, false), pooled.chi2(at, false), pooled.count(false));
-        fits[i].held_out_delta = held_available ? pooled.chi2(current, true) - pooled.chi2(at, true) : 0.0;
+        const std::size_t n = recordings.size();
+        score(fits[i], mean_chi2(pooled, ensemble_runs, n, false), mean_chi2(pooled, candidate_runs, n, false),
+              pooled.count(false));
+        fits[i].held_out_delta =
+            held_available ? mean_chi2(pooled, ensemble_runs, n, true) - mean_chi2(pooled, candidate_runs, n, true) : 0.0;
       }
       // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
       // improvement must hold on the held-out features.
