@@ -544,11 +544,11 @@ Model applied(const Model& base, const Candidate& c, double value) {
 // 0.15, 0.56 of the range), nearest first, clamped to [0, 1], without repeats. Dense near the
 // nominal because a chaotic model (rocking, overturning) can be smooth in the parameter only
 // close to it: a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses.
-std::vector<double> profile_offsets(double u0, int count) {
+std::vector<double> profile_offsets(double u0, int count, double scale) {
   std::vector<double> out;
   for (int k = 0; static_cast<int>(out.size()) < count && k < 8; ++k)
     for (int sign : {1, -1}) {
-      const double u = std::clamp(u0 + sign * 0.04 * std::pow(3.75, k), 0.0, 1.0);
+      const double u = std::clamp(u0 + sign * scale * 0.04 * std::pow(3.75, k), 0.0, 1.0);
       const bool repeat = std::abs(u - u0) < 1e-9 ||
                           std::any_of(out.begin(), out.end(), [&](double v) { return std::abs(u - v) < 1e-9; });
       if (!repeat && static_cast<int>(out.size()) < count) out.push_back(u);
@@ -648,6 +648,19 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
     if (held(name, f)) t.held_out.insert(name);
   }
   return t;
+}
+
+// Mean chi2 (fit or held-out set) of an ensemble's perturbed members (the runs after the
+// first `recordings` nominal ones, `recordings` runs per member).
+double mean_chi2(const Target& target, const std::vector<Features>& runs, std::size_t recordings, bool held) {
+  double sum = 0;
+  int members = 0;
+  for (std::size_t j = recordings; j + recordings <= runs.size(); j += recordings, ++members) {
+    Features member;
+    for (std::size_t r = 0; r < recordings; ++r) member.insert(runs[j + r].begin(), runs[j + r].end());
+    sum += target.chi2(member, held);
+  }
+  return members > 0 ? sum / members : 0.0;
 }
 
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
@@ -818,7 +831,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       const Candidate& c = candidates[i];
       const double u0 = to_scaled(c, c.nominal);
       profiles[i].u.push_back(u0), profiles[i].features.push_back(current);
-      for (double u : profile_offsets(u0, options.profile_points)) {
+      for (double u : profile_offsets(u0, options.profile_points, c.profile_scale)) {
         profiles[i].u.push_back(u);
         points.push_back(applied(base, c, to_value(c, u)));
       }
@@ -869,11 +882,14 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
         candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
                                                   options.ensemble),
                                     fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        // The statistics are means over the perturbed members, not the seed-1 run the value was
+        // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
         const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
-        Features at;
-        for (std::size_t r = 0; r < recordings.size(); ++r) at.insert(candidate_runs[r].begin(), candidate_runs[r].end());
-        score(fits[i], pooled.chi2(current, false), pooled.chi2(at, false), pooled.count(false));
-        fits[i].held_out_delta = held_available ? pooled.chi2(current, true) - pooled.chi2(at, true) : 0.0;
+        const std::size_t n = recordings.size();
+        score(fits[i], mean_chi2(pooled, ensemble_runs, n, false), mean_chi2(pooled, candidate_runs, n, false),
+              pooled.count(false));
+        fits[i].held_out_delta =
+            held_available ? mean_chi2(pooled, ensemble_runs, n, true) - mean_chi2(pooled, candidate_runs, n, true) : 0.0;
       }
       // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
       // improvement must hold on the held-out features.
@@ -895,16 +911,26 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       sensor_candidates.erase(sensor_candidates.begin() + (best - candidates.size()));
       continue;
     }
-    Effect e;
-    e.fit = f;
-    e.candidates_tried = tried;
-    e.indistinguishable = alike;
-    e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
-    const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
-    e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
-    d.effects.push_back(e);
+    if (f.candidate.effect >= 0) {  // a better value of an accepted effect, not a new one
+      Effect& e = d.effects[f.candidate.effect];
+      d.notes.push_back(fmt::format("round {}: {} re-fitted: {} -> {}", round + 1, f.candidate.name,
+                                    format_value(f.candidate, e.fit.value), format_value(f.candidate, f.value)));
+      e.fit.value = f.value, e.fit.standard_error = f.standard_error;
+    } else {
+      Effect e;
+      e.fit = f;
+      e.candidates_tried = tried;
+      e.indistinguishable = alike;
+      e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
+      const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
+      e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
+      d.effects.push_back(e);
+      candidates[best].effect = static_cast<int>(d.effects.size()) - 1;
+    }
     base = applied(base, f.candidate, f.value);
-    candidates.erase(candidates.begin() + best);
+    // Re-fitted later around its value with steps a tenth of a new candidate's: the first fit's
+    // error must not pass for another effect.
+    candidates[best].nominal = f.value, candidates[best].profile_scale = 0.1, candidates[best].at_boundary = false;
     // The scatter of chaos and noise depends on the model: from now on the ensemble around the
     // improved one.
     ensemble_runs = candidate_runs;

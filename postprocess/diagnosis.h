@@ -46,6 +46,10 @@ struct Candidate {
   // Measurement candidates (sensor delay, gain) change the recording, not the model:
   std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
   std::size_t recording = 0;
+  // An accepted effect stays a candidate, re-fitted around its value with profile steps
+  // scaled by `profile_scale`: a new candidate must beat a better value of the old one.
+  int effect = -1;           // index in Diagnosis::effects, or -1
+  double profile_scale = 1;
 };
 
 // Candidates of every available catalogue entry for a run document (bodies,

@@ -46,6 +46,17 @@ void print_candidates(const diagnosis::Diagnosis& d) {
   }
 }
 
+// The scenario with its table records' paths made absolute: relative ones resolve from the
+// scenario's folder, and the improved scenario is written elsewhere.
+json portable(json scenario, const std::string& scenario_path) {
+  if (!scenario.contains("table_motion")) return scenario;
+  for (auto& [axis, motion] : scenario["table_motion"].items())
+    if (motion.contains("record") && fs::path(motion["record"].get<std::string>()).is_relative())
+      motion["record"] = fs::weakly_canonical(fs::absolute(scenario_path).parent_path() /
+                                              motion["record"].get<std::string>()).string();
+  return scenario;
+}
+
 int diagnose_command(DiagnoseOptions& o) {
   json scenario = json::object();
   std::string scenario_path;
@@ -81,7 +92,7 @@ int diagnose_command(DiagnoseOptions& o) {
   const std::string output = !o.output.empty() ? o.output
                              : scenario_path.empty() ? fs::path(recordings.front().path).stem().string() + ".diagnosed.json"
                                                      : fs::path(scenario_path).stem().string() + ".diagnosed.json";
-  write_file_atomically(output, d.improved.dump(2) + "\n");
+  write_file_atomically(output, portable(d.improved, scenario_path).dump(2) + "\n");
   fmt::print("  improved scenario: {} ({} simulations)\n", output, d.simulations);
   if (!o.json_file.empty()) write_file_atomically(o.json_file, diagnosis::diagnosis_json(d).dump(2) + "\n");
   if (!o.report.empty()) {
