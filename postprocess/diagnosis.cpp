@@ -50,12 +50,12 @@ const std::vector<CatalogueEntry> kCatalogue = {
     {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y", true},
     {"vertical_table_motion", "table", "table_motion.z = the table's x acceleration times c",
      "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)", true},
-    {"base_not_flat", "body", "pending: base defect option (branch catalogue)",
+    {"base_not_flat", "body", "bodies[name].base.corner_gaps (the option exists; not yet searched)",
      "the base of {} is not flat: one corner is short", false},
-    {"edge_inset", "body", "pending: effective base inset option (branch catalogue)",
+    {"edge_inset", "body", "bodies[name].base.edge_inset (the option exists; not yet searched)",
      "{} rocks on edges inset from its geometric base edges (worn or rounded edges)", false},
-    {"table_pitch", "table", "pending: table pitch option (branch catalogue)", "the table pitched about y", false},
-    {"table_roll", "table", "pending: table roll option (branch catalogue)", "the table rolled about x", false},
+    {"table_pitch", "table", "table_motion.pitch (the option exists; not yet searched)", "the table pitched about y", false},
+    {"table_roll", "table", "table_motion.roll (the option exists; not yet searched)", "the table rolled about x", false},
 };
 
 // The interface entry of `document` between lower and upper, created when
@@ -214,7 +214,7 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
     skipped->push_back("vertical table motion: needs a recorded table_ax and no recorded table_az");
   }
   for (const CatalogueEntry& e : kCatalogue)
-    if (!e.available && skipped) skipped->push_back(fmt::format("{}: waits for its scenario option", e.name));
+    if (!e.available && skipped) skipped->push_back(fmt::format("{}: its model option exists but it is not yet searched (docs/diagnose.md)", e.name));
   return out;
 }
 
