@@ -15,6 +15,7 @@
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
 #include "results_analysis.h"
+#include "scenario.h"
 #include "synthetic_recording.h"
 
 namespace freestand::diagnosis {
@@ -348,6 +349,29 @@ std::vector<MeasurementIssue> measurement_issues(const Recording& rec, const Rec
       if (m.drift_significant || m.delay_suspected || m.gain_suspected) out.push_back(m);
     }
   }
+  return out;
+}
+
+// The table against the scenario's command (when it states a table_motion): a
+// measurement issue, not physics; the simulations replay the recorded table.
+// A recording whose table does not resemble the command (correlation below
+// 0.5) is of another motion: noted, not compared.
+std::vector<TableTracking> table_against_command(const json& scenario, const std::vector<Recording>& recordings,
+                                                 std::vector<std::string>& notes) {
+  std::vector<TableTracking> out;
+  if (!scenario.contains("table_motion")) return out;
+  Scenario model;
+  model.path = "scenario", model.document = scenario;
+  const std::optional<ShakeTable> command = commanded_table(model);
+  if (!command) return out;
+  for (const Recording& r : recordings)
+    for (TableTracking& k : table_tracking(r, *command)) {
+      if (!(k.correlation >= 0.5))
+        notes.push_back(fmt::format("{}: {} is not the scenario's table_motion (correlation {:.2f}): not compared "
+                                    "with the command", r.path, k.channel, k.correlation));
+      else if (!k.text.empty())
+        k.text = r.path + ": " + k.text, out.push_back(std::move(k));
+    }
   return out;
 }
 
@@ -772,6 +796,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
                                      "uplift: nothing to compare", r.path, body));
     }
   }
+  d.table = table_against_command(scenario, recordings, d.notes);  // before any simulation: a bad table_motion stops here
   const bool own_directory = options.work_directory.empty();
   std::string directory = options.work_directory;
   if (own_directory) {
@@ -963,6 +988,9 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
 
   // 5. The verdict in plain words.
   std::string v;
+  for (const TableTracking& k : d.table)
+    v += "Measurement: " + k.text + ". The simulations replay the recorded table motion, so the bodies are "
+         "compared under what the table did.\n";
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
     const Mismatch& first = d.mismatches.front();
@@ -1033,6 +1061,12 @@ json diagnosis_json(const Diagnosis& d) {
                                          {"gain_sd", m.gain_sd}, {"gain_significant", m.gain_significant},
                                          {"bias", m.bias}, {"drift", m.drift}, {"drift_significant", m.drift_significant},
                                          {"correlation", m.correlation}});
+  out["table_tracking"] = json::array();
+  for (const TableTracking& k : d.table)
+    out["table_tracking"].push_back({{"channel", k.channel}, {"text", k.text}, {"delay", k.delay},
+                                     {"delay_sd", k.delay_sd}, {"gain", k.gain}, {"gain_sd", k.gain_sd},
+                                     {"left_share", k.left_share}, {"noise_share", k.noise_share},
+                                     {"correlation", k.correlation}});
   out["effects"] = out["recalibrated"] = json::array();
   for (const Effect& e : d.effects) {
     json j = fitted(e.fit);

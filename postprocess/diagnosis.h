@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "recording.h"
+#include "table_tracking.h"
 
 namespace freestand::diagnosis {
 
@@ -132,6 +133,7 @@ struct FeatureRow {           // one event feature, recorded and simulated
 
 struct Diagnosis {
   std::vector<MeasurementIssue> measurement;
+  std::vector<TableTracking> table;            // recorded table against the scenario's command, where it differs
   std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order
   std::vector<ChannelDivergence> divergence;
   int feature_count = 0;

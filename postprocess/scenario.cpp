@@ -91,6 +91,30 @@ std::string axis_arguments(const Scenario& scenario, const std::string& axis, co
   return args;
 }
 
+// fix shaketable arguments of every axis of the scenario's table_motion ("" for a fixed table).
+std::string table_arguments(const Scenario& scenario) {
+  std::string table;
+  if (!scenario.document.contains("table_motion")) return table;
+  for (const auto& [axis, spec] : scenario.document.at("table_motion").items()) {
+    if (axis != "x" && axis != "y" && axis != "z" && axis != "roll" && axis != "pitch")
+      fail(scenario.path + ": table_motion", "axes are x, y, z, roll and pitch, not '" + axis + "'");
+    table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec);
+  }
+  return table;
+}
+
+// The table as fix shaketable will play `table_args` (the same parser and kinematics).
+ShakeTable shake_table(const Scenario& scenario, const std::string& table_args) {
+  std::vector<std::string> args;
+  std::istringstream words(table_args);
+  for (std::string w; words >> w;) args.push_back(w);
+  try {
+    return ShakeTable(parse_shake_table_args(args));
+  } catch (const InputError& e) {
+    fail(scenario.path + ": table_motion", e.what());
+  }
+}
+
 // The body extent, for the simulation box: every body's bounding sphere at
 // its initial position, padded for rocking, toppling and table travel.
 struct Extent {
@@ -129,24 +153,23 @@ struct TableTravel {
 TableTravel table_travel(const Scenario& scenario, const std::string& table_args, double duration) {
   TableTravel travel;
   if (table_args.empty()) return travel;
-  std::vector<std::string> args;
-  std::istringstream words(table_args);
-  for (std::string w; words >> w;) args.push_back(w);
-  try {
-    const ShakeTable table(parse_shake_table_args(args));
-    travel.duration = table.duration();
-    const double end = duration > 0 ? duration : travel.duration;
-    for (double t = 0; t <= end + 0.01; t += 0.01) {
-      const Eigen::Vector3d d = table.at(t).displacement;
-      for (int k = 0; k < 3; ++k) travel.reach[k] = std::max(travel.reach[k], std::fabs(d[k]));
-    }
-  } catch (const InputError& e) {
-    fail(scenario.path + ": table_motion", e.what());
+  const ShakeTable table = shake_table(scenario, table_args);
+  travel.duration = table.duration();
+  const double end = duration > 0 ? duration : travel.duration;
+  for (double t = 0; t <= end + 0.01; t += 0.01) {
+    const Eigen::Vector3d d = table.at(t).displacement;
+    for (int k = 0; k < 3; ++k) travel.reach[k] = std::max(travel.reach[k], std::fabs(d[k]));
   }
   return travel;
 }
 
 }  // namespace
+
+std::optional<ShakeTable> commanded_table(const Scenario& scenario) {
+  const std::string args = table_arguments(scenario);
+  if (args.empty()) return std::nullopt;
+  return shake_table(scenario, args);
+}
 
 void apply_override(json& document, const std::string& assignment) {
   const std::size_t equals = assignment.find('=');
@@ -207,13 +230,8 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
     if (doc.contains(key)) run.scene[key] = doc[key];
   const Scene scene = parse_scene(run.scene, scenario.path);
 
-  std::string table = "", table_height = fmt::format("{}", doc.value("table_height", 0.0));
-  if (doc.contains("table_motion"))
-    for (const auto& [axis, spec] : doc.at("table_motion").items()) {
-      if (axis != "x" && axis != "y" && axis != "z" && axis != "roll" && axis != "pitch")
-        fail(scenario.path + ": table_motion", "axes are x, y, z, roll and pitch, not '" + axis + "'");
-      table += (table.empty() ? "" : " ") + axis_arguments(scenario, axis, spec);
-    }
+  const std::string table = table_arguments(scenario),
+                    table_height = fmt::format("{}", doc.value("table_height", 0.0));
   const TableTravel travel = table_travel(scenario, table, run.settings.duration);
   if (run.settings.duration <= 0) run.settings.duration = travel.duration;
   if (!(run.settings.duration > 0))

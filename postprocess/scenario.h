@@ -9,8 +9,11 @@
 // input script for freestand-lmp.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "freestand/shake_table.h"
 
 namespace freestand {
 
@@ -26,6 +29,11 @@ struct Scenario {
 // string). Throws InputError naming the file, field or override at fault.
 Scenario read_scenario(const std::string& path, const std::vector<std::string>& overrides = {});
 void apply_override(nlohmann::json& document, const std::string& assignment);
+
+// The table motion the scenario commands, as fix shaketable will play it
+// (the same parser and kinematics); nothing for a fixed table. Throws
+// InputError naming the scenario's table_motion when it is wrong.
+std::optional<ShakeTable> commanded_table(const Scenario& scenario);
 
 // How to run it, with defaults resolved (docs/scenario.md).
 struct RunSettings {

@@ -64,7 +64,7 @@ int diagnose_command(DiagnoseOptions& o) {
   for (const std::string& input : o.inputs) {
     if (is_scenario(input) && scenario_path.empty() && recordings.empty()) {
       scenario_path = input;
-      scenario = read_scenario(input).document;
+      scenario = portable(read_scenario(input).document, input);  // table records resolve from anywhere
     } else {
       recordings.push_back(read_recording(input));
     }
@@ -92,7 +92,7 @@ int diagnose_command(DiagnoseOptions& o) {
   const std::string output = !o.output.empty() ? o.output
                              : scenario_path.empty() ? fs::path(recordings.front().path).stem().string() + ".diagnosed.json"
                                                      : fs::path(scenario_path).stem().string() + ".diagnosed.json";
-  write_file_atomically(output, portable(d.improved, scenario_path).dump(2) + "\n");
+  write_file_atomically(output, d.improved.dump(2) + "\n");
   fmt::print("  improved scenario: {} ({} simulations)\n", output, d.simulations);
   if (!o.json_file.empty()) write_file_atomically(o.json_file, diagnosis::diagnosis_json(d).dump(2) + "\n");
   if (!o.report.empty()) {
