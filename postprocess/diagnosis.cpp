@@ -14,6 +14,7 @@
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
+#include "launched_body.h"
 #include "results_analysis.h"
 #include "scenario.h"
 #include "synthetic_recording.h"
@@ -31,8 +32,9 @@ const double kMinDuration = 0.5;   // s: a shorter record holds too few events t
 const int kMinSamples = 50;
 const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
                                       // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
-const double kFarOff = 3;
-const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop          // a stated value moved by more than this factor is flagged
+const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
+const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
+const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ catalogue
 
@@ -219,6 +221,44 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
   return out;
 }
 
+// The nominal's entry of body `name`, or null.
+const json* body_spec(const json& nominal, const std::string& name) {
+  if (nominal.is_object() && nominal.contains("bodies"))
+    for (const json& b : nominal["bodies"])
+      if (b.value("name", "") == name) return &b;
+  return nullptr;
+}
+
+// A launched body's events (launched_body.h): touchdowns confirmed by 4 length-noise s.d.,
+// rest within 2 % of its size and 2 degrees of the final pose (calibration's rest definition).
+LaunchedEvents launched_events_of(const analysis::BodyMotion& m, double size, const analysis::AnalysisParameters& p) {
+  std::vector<const std::vector<double>*> lengths, angles;
+  for (int c = 0; c < analysis::kChannelCount; ++c)
+    if (!m.channels[c].empty()) (c <= analysis::kTwist ? angles : lengths).push_back(&m.channels[c]);
+  return launched_events(m.time, lengths, angles, m.channels[analysis::kUplift], 4 * p.length_noise, 0.02 * size,
+                         2 * M_PI / 180);
+}
+
+// A launched body tumbles: its rocking events mean nothing. Compared: when it touches down, how
+// high it bounces, when it comes to rest and its final pose (every channel's last value).
+template <class Add>
+void launched_features(const AnalysedBody& body, double size, const analysis::AnalysisParameters& p, Add& add) {
+  const double dt = sample_step(body.motion.time), end = body.motion.time.back();
+  const LaunchedEvents e = launched_events_of(body.motion, size, p);
+  for (std::size_t i = 0; i < e.touchdowns.size() && i < kLaunchEvents; ++i) {
+    add(fmt::format("touchdown{}.time", i + 1), e.touchdowns[i], e.touchdowns[i], dt, "uplift", end);
+    add(fmt::format("bounce{}.height", i + 1), e.bounce_heights[i], e.touchdowns[i], std::sqrt(2.0) * p.length_noise,
+        "uplift", 0);
+  }
+  add("rest.time", e.rest_time, e.rest_time, dt, "slide", end);
+  const analysis::MotionSummary& s = body.summary;
+  for (int c = 0; c < analysis::kChannelCount; ++c)
+    if (!body.motion.channels[c].empty())
+      add(channel_names()[c] + ".residual", s.residual.mean[c], s.residual.window_start,
+          c <= analysis::kTwist ? p.angle_noise : p.length_noise,
+          c <= analysis::kRockY ? "rock" : c == analysis::kTwist ? "twist" : c == analysis::kUplift ? "uplift" : "slide", 0);
+}
+
 Features event_features(const Recording& recording, const json& analysis_nominal) {
   Recording r;
   r.path = recording.path, r.time = recording.time, r.channels = recording.channels, r.nominal = analysis_nominal;
@@ -232,6 +272,11 @@ Features event_features(const Recording& recording, const json& analysis_nominal
                    double fallback) {
       if (std::isfinite(value)) out[body.name + "." + name] = {value, std::isfinite(time) ? time : 0.0, floor, mode, fallback};
     };
+    const json* spec = body_spec(analysis_nominal, body.name);
+    if (spec && is_launched(*spec) && !body.motion.channels[analysis::kUplift].empty()) {
+      launched_features(body, body_size(r, body.name), p, add);
+      continue;
+    }
     for (int c = 0; c < analysis::kChannelCount; ++c) {
       if (body.motion.channels[c].empty()) continue;
       const bool angle = c <= analysis::kTwist;
@@ -739,6 +784,60 @@ std::string event_words(const Mismatch& m) {
   return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
 }
 
+// A launched body's initial state as uncertain as the recording can measure it: position and
+// orientation by the noise, velocity and spin by the slope of a line through the samples of
+// free flight before the first touchdown (flight_rate_sd), every axis.
+void perturb_launch(json& body, const Recording& recording, std::normal_distribution<double>& normal,
+                    std::mt19937& rng) {
+  const analysis::AnalysisParameters p = parameters_for(recording.nominal);
+  const double dt = sample_step(recording.time);
+  int flight = 0;
+  if (const RecordingChannel* uplift = recording.find(body.value("name", "") + ".uplift")) {
+    const LaunchedEvents e = launched_events(recording.time, {}, {}, uplift->values, 4 * p.length_noise, 0, 0);
+    const double touchdown = e.touchdowns.empty() ? recording.time.back() : e.touchdowns.front();
+    for (double t : recording.time) flight += t < touchdown;
+  }
+  const double v_sd = flight_rate_sd(p.length_noise, flight, dt), w_sd = flight_rate_sd(p.angle_noise, flight, dt);
+  auto perturbed = [&](const char* key, double sd) {
+    std::vector<double> v = body.value(key, std::vector<double>{0, 0, 0});
+    for (double& x : v) x += sd * normal(rng);
+    body[key] = v;
+  };
+  perturbed("position", p.length_noise), perturbed("velocity", v_sd), perturbed("omega", w_sd);
+  const auto q = body.value("orientation", std::vector<double>{1, 0, 0, 0});
+  const Eigen::Vector3d turn(normal(rng), normal(rng), normal(rng));
+  const Eigen::Quaterniond turned =
+      Eigen::Quaterniond(Eigen::AngleAxisd(p.angle_noise * turn.norm(), turn.normalized())) *
+      Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  body["orientation"] = {turned.w(), turned.x(), turned.y(), turned.z()};
+}
+
+// The recordings, each with a sensor_noise in its nominal: where none is stated, estimated per
+// kind (angle, length) as the median over the body channels of signal::second_difference_noise
+// (a real recording often states none; the default 1e-4 would make every feature significant).
+std::vector<Recording> with_sensor_noise(const std::vector<Recording>& given, std::vector<std::string>& notes) {
+  std::vector<Recording> out = given;
+  for (Recording& r : out) {
+    if (!r.nominal.is_object() || r.nominal.contains("sensor_noise")) continue;
+    std::vector<double> angle, length;
+    for (const std::string& body : r.body_names())
+      for (int c = 0; c < analysis::kChannelCount; ++c)
+        if (const RecordingChannel* ch = r.find(body + "." + channel_names()[c]))
+          if (const double n = signal::second_difference_noise(ch->values); n > 0)
+            (c <= analysis::kTwist ? angle : length).push_back(n);
+    json noise = json::object();
+    for (auto [key, values] : {std::pair{"angle", &angle}, std::pair{"length", &length}}) {
+      if (values->empty()) continue;
+      std::nth_element(values->begin(), values->begin() + values->size() / 2, values->end());
+      noise[key] = (*values)[values->size() / 2];
+    }
+    r.nominal["sensor_noise"] = noise;
+    notes.push_back(fmt::format("{}: no sensor_noise stated; estimated from the channels' second differences: {}",
+                                r.path, noise.dump()));
+  }
+  return out;
+}
+
 // The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
 // (where the body states its orientation) and spin perturbed by the angle noise, each with
 // its own noise seed.
@@ -752,6 +851,10 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
       json doc = base[r];
       const double angle = parameters_for(recordings[r].nominal).angle_noise;
       for (json& b : doc["bodies"]) {
+        if (is_launched(b)) {
+          perturb_launch(b, recordings[r], normal, rng);
+          continue;
+        }
         // A spin that turns the body by one angle-noise s.d. in 1/(2 pi) s.
         b["omega"] = {angle * 2 * M_PI * normal(rng), angle * 2 * M_PI * normal(rng), 0.0};
         if (b.contains("orientation")) {
@@ -769,9 +872,10 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
 
 }  // namespace
 
-Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recordings, const Options& options) {
-  if (recordings.empty()) throw InputError("diagnose: no recording");
+Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, const Options& options) {
+  if (given.empty()) throw InputError("diagnose: no recording");
   Diagnosis d;
+  const std::vector<Recording> recordings = with_sensor_noise(given, d.notes);
   // Bad input first: no partial verdict.
   for (const Recording& r : recordings) {
     const double duration = r.time.empty() ? 0 : r.time.back() - r.time.front();

@@ -79,6 +79,15 @@ std::vector<double> resample_uniform(const std::vector<double>& t, const std::ve
   return out;
 }
 
+double second_difference_noise(const std::vector<double>& y) {
+  std::vector<double> d;
+  for (std::size_t k = 1; k + 1 < y.size(); ++k)
+    if (const double v = y[k + 1] - 2 * y[k] + y[k - 1]; std::isfinite(v)) d.push_back(std::abs(v));
+  if (d.size() < 3) return kNaN;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return 1.4826 * d[d.size() / 2] / std::sqrt(6.0);  // 1.4826 MAD: the s.d. of a Gaussian
+}
+
 double median_step(const std::vector<double>& t) {
   if (t.size() < 2) return kNaN;
   std::vector<double> steps(t.size() - 1);

@@ -56,6 +56,12 @@ std::vector<double> resample_uniform(const std::vector<double>& t, const std::ve
 // Median spacing of t (s): the sampling step of a recording with occasional jitter.
 double median_step(const std::vector<double>& t);
 
+// The white noise of y from its second differences: var(y[k+1] - 2 y[k] + y[k-1])
+// = 6 sigma^2 for white noise, taken robustly (1.4826 x the median |difference|,
+// so impacts and jumps do not count); signal content can only raise it. NaN
+// with fewer than 3 finite differences.
+double second_difference_noise(const std::vector<double>& y);
+
 // Mean of the finite values of y in `range`; NaN when none.
 double finite_mean(const std::vector<double>& y, IndexRange range);
 

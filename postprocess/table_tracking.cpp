@@ -13,19 +13,6 @@ namespace {
 constexpr double kMaxLag = 0.5;       // s, offsets searched (a servo lags by milliseconds)
 constexpr double kSignificance = 4;   // s.d.: with three estimates per axis, a false alarm well below 1e-3
 
-// The noise of a signal sampled well above its bandwidth, from its second
-// differences: for white noise var(y[k+1] - 2 y[k] + y[k-1]) = 6 sigma^2, and
-// signal content only adds to it, so this is an upper bound.
-double second_difference_noise(const std::vector<double>& y) {
-  double sum = 0;
-  int n = 0;
-  for (std::size_t k = 1; k + 1 < y.size(); ++k) {
-    const double d = y[k + 1] - 2 * y[k] + y[k - 1];
-    if (std::isfinite(d)) sum += d * d, ++n;
-  }
-  return n > 0 ? std::sqrt(sum / n / 6) : signal::kNaN;
-}
-
 double root_mean_square(const std::vector<double>& y) {
   double sum = 0;
   for (double v : y) sum += v * v;
@@ -51,7 +38,7 @@ void describe(TableTracking& k) {
   k.text = fmt::format("{}: the table did not follow its command: it lags by {:.3g} ms (+- {:.2g}), gain {:.4g} "
                        "(+- {:.2g}); what lag and gain leave is {:.2g} % of the command's RMS (noise {}{:.2g} %)",
                        k.channel, 1e3 * k.delay, 1e3 * k.delay_sd, k.gain, k.gain_sd, 100 * k.left_share,
-                       k.noise_stated ? "" : "at most ", 100 * k.noise_share);
+                       k.noise_stated ? "" : "estimated ", 100 * k.noise_share);
 }
 
 TableTracking track_axis(const Recording& recording, const std::vector<double>& recorded, const SampledCommand& c,
@@ -62,7 +49,7 @@ TableTracking track_axis(const Recording& recording, const std::vector<double>& 
   const nlohmann::json noise = recording.nominal.is_object() ? recording.nominal.value("sensor_noise", nlohmann::json::object()) : nlohmann::json::object();
   const double stated = noise.is_object() ? noise.value("acceleration", 0.0) : 0.0;
   k.noise_stated = measured && !measured->derived && stated > 0;  // a derived channel has its own noise
-  k.noise = k.noise_stated ? stated : second_difference_noise(recorded);
+  k.noise = k.noise_stated ? stated : signal::second_difference_noise(recorded);
 
   comparison::ComparisonParameters p;
   p.noise = k.noise, p.max_lag = kMaxLag;

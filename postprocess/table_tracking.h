@@ -28,7 +28,7 @@ struct TableTracking {
   double left_share = signal::kNaN;   // RMS of what lag, gain and bias leave, over the command's RMS
   double noise_share = signal::kNaN;  // the acceleration noise over the command's RMS
   double noise = signal::kNaN;        // m/s^2, stated (sensor_noise.acceleration) or estimated
-  bool noise_stated = false;          // false: estimated from second differences (an upper bound)
+  bool noise_stated = false;          // false: estimated from second differences (signal_tools.h)
   bool delay_significant = false, gain_significant = false, left_significant = false;
   std::string text;                   // plain words; empty when the table followed its command
 };

@@ -89,13 +89,13 @@ TEST(TableTracking, DistortionBeyondLagAndGainIsFlagged) {
   EXPECT_GT(k.left_share, k.noise_share);  // what is left is the noise plus the part of the echo no lag absorbs
 }
 
-TEST(TableTracking, WithoutStatedNoiseItIsBoundedFromSecondDifferences) {
+TEST(TableTracking, WithoutStatedNoiseItIsEstimatedFromSecondDifferences) {
   const ShakeTable command = sweep_command();
   Recording r = table_recording(command, 0.0113, 0.981, 0, 0.05, 4);
   r.nominal = nlohmann::json::object();
   const TableTracking k = table_tracking(r, command).at(0);
   EXPECT_FALSE(k.noise_stated);
-  // An upper bound: the sweep's own second differences at 200 Hz add to the 0.05 of the noise.
+  // The sweep's own second differences at 200 Hz can only add to the 0.05 of the noise.
   EXPECT_GE(k.noise, 0.05 * 0.9);
   EXPECT_NEAR(k.delay, 0.0113, 4 * k.delay_sd);
 }
