@@ -240,7 +240,7 @@ LaunchedEvents launched_events_of(const analysis::BodyMotion& m, double size, co
 }
 
 // A launched body tumbles: its rocking events mean nothing. Compared: when it touches down, how
-// high it bounces, when it comes to rest and its final pose (every channel's last value).
+// high it bounces, when it comes to rest and where.
 template <class Add>
 void launched_features(const AnalysedBody& body, double size, const analysis::AnalysisParameters& p, Add& add) {
   const double dt = sample_step(body.motion.time), end = body.motion.time.back();
@@ -251,12 +251,14 @@ void launched_features(const AnalysedBody& body, double size, const analysis::An
         "uplift", 0);
   }
   add("rest.time", e.rest_time, e.rest_time, dt, "slide", end);
+  // Where it rests; not its final orientation: which face ends down is a discrete outcome
+  // (rock angles of 0 or +-pi/2, headings equal modulo pi/2), whose difference is no
+  // Gaussian residual.
   const analysis::MotionSummary& s = body.summary;
-  for (int c = 0; c < analysis::kChannelCount; ++c)
+  for (int c : {analysis::kSlideX, analysis::kSlideY, analysis::kUplift})
     if (!body.motion.channels[c].empty())
-      add(channel_names()[c] + ".residual", s.residual.mean[c], s.residual.window_start,
-          c <= analysis::kTwist ? p.angle_noise : p.length_noise,
-          c <= analysis::kRockY ? "rock" : c == analysis::kTwist ? "twist" : c == analysis::kUplift ? "uplift" : "slide", 0);
+      add(channel_names()[c] + ".residual", s.residual.mean[c], s.residual.window_start, p.length_noise,
+          c == analysis::kUplift ? "uplift" : "slide", 0);
 }
 
 Features event_features(const Recording& recording, const json& analysis_nominal) {

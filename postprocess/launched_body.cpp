@@ -18,10 +18,21 @@ namespace {
 
 constexpr int kFinalSamples = 5;  // samples averaged for the final pose
 
+double final_mean(const std::vector<double>& y) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t k = y.size() > kFinalSamples ? y.size() - kFinalSamples : 0; k < y.size(); ++k)
+    if (std::isfinite(y[k])) sum += y[k], ++n;
+  return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+}
+
 // Minima of y confirmed by a fall of `h` before and a rise of `h` after (a
 // zigzag with hysteresis: noise below h makes no event); the highest value
-// between each minimum and the next.
+// between each minimum and the next, over y's final value (the sampled minimum
+// itself is no reference: the body moves fastest there, up to v x step between
+// samples).
 void minima_and_rises(const std::vector<double>& t, const std::vector<double>& y, double h, LaunchedEvents& e) {
+  const double rest = final_mean(y);
   double low = std::numeric_limits<double>::infinity(), high = -low, t_low = 0;
   bool falling = true;  // looking for a minimum (a launched body comes down first)
   for (std::size_t k = 0; k < y.size(); ++k) {
@@ -35,20 +46,12 @@ void minima_and_rises(const std::vector<double>& t, const std::vector<double>& y
     } else {
       high = std::max(high, y[k]);
       if (y[k] < high - h) {  // coming down again
-        e.bounce_heights.push_back(high - low);
+        e.bounce_heights.push_back(high - rest);
         falling = true, low = y[k], t_low = t[k];
       }
     }
   }
-  if (!falling) e.bounce_heights.push_back(high - low);
-}
-
-double final_mean(const std::vector<double>& y) {
-  double sum = 0;
-  int n = 0;
-  for (std::size_t k = y.size() > kFinalSamples ? y.size() - kFinalSamples : 0; k < y.size(); ++k)
-    if (std::isfinite(y[k])) sum += y[k], ++n;
-  return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+  if (!falling) e.bounce_heights.push_back(high - rest);
 }
 
 // Last sample index at which channel y is farther than `band` from its final value (-1: never).

@@ -22,7 +22,7 @@ bool is_launched(const nlohmann::json& body);
 // and the six channels' last values.
 struct LaunchedEvents {
   std::vector<double> touchdowns;     // s: local minima of uplift, confirmed by a rise of `hysteresis`
-  std::vector<double> bounce_heights; // m: highest uplift after each touchdown (until the next) over its value there
+  std::vector<double> bounce_heights; // m: highest uplift after each touchdown (until the next) over the final uplift
   double rest_time;                   // s: from then on every channel stays near its final value (below)
 };
 // `hysteresis` (m): the fall before and rise after a minimum that make it a
