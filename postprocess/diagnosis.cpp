@@ -59,6 +59,8 @@ const std::vector<CatalogueEntry> kCatalogue = {
      "{} rocks on edges inset from its geometric base edges (worn or rounded edges)", false},
     {"table_pitch", "table", "table_motion.pitch (the option exists; not yet searched)", "the table pitched about y", false},
     {"table_roll", "table", "table_motion.roll (the option exists; not yet searched)", "the table rolled about x", false},
+    {"friction", "interface", "interfaces[i].mu_s (mu_k scaled with it)",
+     "friction at {} is higher or lower than stated", true},
 };
 
 // The interface entry of `document` between lower and upper, created when
@@ -139,6 +141,16 @@ void interface_candidates(const json& document, const Scene& scene, const Record
       continue;
     }
     const double mu_s = f.contact.mu_s;
+    // Friction itself (a recalibration when the interface states it): mu_s with mu_k / mu_s kept,
+    // read from the model it is applied to, so it composes with an accepted friction-law effect.
+    Candidate mu = make("friction", "", 0.02, 1.5, mu_s, false, stated.contains("mu") || stated.contains("mu_s"));
+    mu.apply = [lower, upper, mu_s](json& d, double v) {
+      json& g = interface_entry(d, lower, upper);
+      const double s = g.value("mu_s", g.value("mu", mu_s)), ratio = g.value("mu_k", s) / s;
+      g.erase("mu");
+      g["mu_s"] = v, g["mu_k"] = ratio * v;
+    };
+    out.push_back(mu);
     for (const auto& [entry, decay] : {std::pair<const char*, double>{"static_kinetic_friction", 0.0},
                                        std::pair<const char*, double>{"velocity_weakening", 5.0}}) {
       const bool stat = decay > 0 ? stated.contains("friction_decay") : stated.contains("mu_k");
@@ -146,8 +158,9 @@ void interface_candidates(const json& document, const Scene& scene, const Record
       c.at_boundary = c.nominal >= 1.0;  // mu_k cannot exceed mu_s: equal friction is the bound
       c.apply = [lower, upper, mu_s, decay](json& d, double v) {
         json& g = interface_entry(d, lower, upper);
+        const double s = g.value("mu_s", g.value("mu", mu_s));
         g.erase("mu");
-        g["mu_s"] = mu_s, g["mu_k"] = v * mu_s, g["friction_decay"] = decay;
+        g["mu_s"] = s, g["mu_k"] = v * s, g["friction_decay"] = decay;
       };
       out.push_back(c);
     }

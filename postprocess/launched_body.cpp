@@ -27,14 +27,14 @@ double final_mean(const std::vector<double>& y) {
 }
 
 // Minima of y confirmed by a fall of `h` before and a rise of `h` after (a
-// zigzag with hysteresis: noise below h makes no event); the highest value
+// zigzag with hysteresis: noise below h makes no event), the first after y
+// came down by h from where it started or its launch apex; the highest value
 // between each minimum and the next, over y's final value (the sampled minimum
-// itself is no reference: the body moves fastest there, up to v x step between
-// samples).
+// is no reference: the body moves fastest there, up to v x step between samples).
 void minima_and_rises(const std::vector<double>& t, const std::vector<double>& y, double h, LaunchedEvents& e) {
   const double rest = final_mean(y);
   double low = std::numeric_limits<double>::infinity(), high = -low, t_low = 0;
-  bool falling = true;  // looking for a minimum (a launched body comes down first)
+  bool falling = false;  // first the start or the launch apex, then down to a touchdown
   for (std::size_t k = 0; k < y.size(); ++k) {
     if (!std::isfinite(y[k])) continue;
     if (falling) {
@@ -45,13 +45,13 @@ void minima_and_rises(const std::vector<double>& t, const std::vector<double>& y
       }
     } else {
       high = std::max(high, y[k]);
-      if (y[k] < high - h) {  // coming down again
-        e.bounce_heights.push_back(high - rest);
+      if (y[k] < high - h) {  // coming down: the apex of a bounce (not of the launch)
+        if (!e.touchdowns.empty()) e.bounce_heights.push_back(high - rest);
         falling = true, low = y[k], t_low = t[k];
       }
     }
   }
-  if (!falling) e.bounce_heights.push_back(high - rest);
+  if (!falling && !e.touchdowns.empty()) e.bounce_heights.push_back(high - rest);
 }
 
 // Last sample index at which channel y is farther than `band` from its final value (-1: never).

@@ -50,6 +50,22 @@ TEST(LaunchedBody, TouchdownsAndBouncesOfABouncingBall) {
   EXPECT_GT(ev.rest_time, t1);
 }
 
+TEST(LaunchedBody, ALaunchUpwardIsNoBounce) {
+  // Thrown up at 1 m/s from 0.1 m: the apex of the throw is no bounce; the first touchdown is
+  // at the root of 0.1 + t - g t^2 / 2 = 0.
+  const double step = 1.0 / 148;
+  std::vector<double> t, z;
+  for (int k = 0; k < 100; ++k) {
+    t.push_back(k * step);
+    z.push_back(std::max(0.1 + t.back() - 0.5 * kG * t.back() * t.back(), 0.0) - 0.1);
+  }
+  const LaunchedEvents ev = launched_events(t, {&z}, {}, z, 2e-4, 0.002, 0.035);
+  const double landing = (1 + std::sqrt(1 + 2 * kG * 0.1)) / kG;
+  ASSERT_EQ(ev.touchdowns.size(), 0u) << "it never rises again: no touchdown is confirmed";
+  EXPECT_TRUE(ev.bounce_heights.empty());
+  EXPECT_NEAR(ev.rest_time, landing, step);
+}
+
 TEST(LaunchedBody, FlightRateUncertaintyIsTheScatterOfFittedSlopes) {
   const double noise = 1e-3, step = 0.01;
   const int n = 8;
