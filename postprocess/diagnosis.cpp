@@ -668,6 +668,12 @@ void score(FittedCandidate& f, double chi2_before, double chi2_at, int n) {
   f.delta_bic = f.delta - std::log(std::max(1, n));
 }
 
+// A misfit beyond the noise (chi2 per degree of freedom above 1) widens a profile's s.d. by its
+// square root, the Birge ratio: the curvature alone assumes the model fits the data.
+double birge_ratio(double chi2, int features) {
+  return features > 1 ? std::max(1.0, std::sqrt(chi2 / (features - 1))) : 1.0;
+}
+
 FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
                           double held_base, bool held_available) {
   std::vector<std::pair<double, double>> curve;
@@ -679,7 +685,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
   score(f, chi2_base, curve[best].second, target.count(false));
-  const double sd_u = profile_sd(curve);
+  const double sd_u = profile_sd(curve) * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
   f.evaluations = static_cast<int>(p.u.size());
   if (held_available) {
@@ -767,7 +773,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
   score(f, chi2_base, curve[best].second, fit_count);
-  f.standard_error = profile_sd(curve) * (c.upper - c.lower);
+  f.standard_error = profile_sd(curve) * birge_ratio(curve[best].second, fit_count) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
   return f;
