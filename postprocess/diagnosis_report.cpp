@@ -3,10 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "freestand/body_channels.h"
 #include "svg_plot.h"
 
 namespace freestand::diagnosis {
@@ -17,34 +20,64 @@ const int kOverlays = 3;  // channels overlaid: the first mismatched ones
 
 CellMark z_mark(double z, double threshold) { return std::abs(z) > threshold ? CellMark::bad : CellMark::good; }
 
-// The channels ("body.rock_x") of the first mismatched features, in time order.
-std::vector<std::string> mismatched_channels(const Diagnosis& d) {
-  std::vector<std::string> out;
+// A channel of one recording: `recording` indexes Diagnosis::recorded (and the runs).
+struct OverlaidChannel {
+  std::size_t recording = 0;
+  std::string channel;  // "body.rock_x"
+  std::string title;    // as the features name it: "r2:body.rock_x" with several recordings
+};
+
+// The channel a feature is read from: "[rN:]body.CH.rest" -> CH; a launched body's touchdowns
+// and bounces are read from its uplift; body-wide features (total_slip, rest.time) from none.
+std::optional<OverlaidChannel> channel_of_feature(const std::string& feature) {
+  OverlaidChannel c;
+  std::string name = feature;
+  if (name.size() > 1 && name[0] == 'r' && std::isdigit(static_cast<unsigned char>(name[1]))) {
+    const std::size_t colon = name.find(':');
+    c.recording = std::stoul(name.substr(1, colon - 1)) - 1;
+    name = name.substr(colon + 1);
+  }
+  const std::size_t dot = name.find('.');
+  const std::string body = name.substr(0, dot), rest = name.substr(dot + 1);
+  const std::string first = rest.substr(0, rest.find('.'));
+  const auto& channels = channel_names();
+  if (std::find(channels.begin(), channels.end(), first) != channels.end()) c.channel = body + "." + first;
+  else if (first.rfind("touchdown", 0) == 0 || first.rfind("bounce", 0) == 0) c.channel = body + ".uplift";
+  else return std::nullopt;
+  c.title = feature.substr(0, feature.size() - name.size()) + c.channel;
+  return c;
+}
+
+// The channels of the first mismatched features, in time order.
+std::vector<OverlaidChannel> mismatched_channels(const Diagnosis& d) {
+  std::vector<OverlaidChannel> out;
   for (const Mismatch& m : d.mismatches) {
-    const std::size_t body = m.feature.find('.'), channel = m.feature.find('.', body + 1);
-    if (channel == std::string::npos) continue;  // a body-wide feature (total_slip, motion_onset)
-    const std::string name = m.feature.substr(0, channel);
-    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+    const std::optional<OverlaidChannel> c = channel_of_feature(m.feature);
+    if (!c) continue;
+    if (std::none_of(out.begin(), out.end(), [&](const OverlaidChannel& o) { return o.title == c->title; }))
+      out.push_back(*c);
     if (static_cast<int>(out.size()) == kOverlays) break;
   }
   return out;
 }
 
-std::string overlay(const Diagnosis& d, const std::string& channel) {
+std::string overlay(const Diagnosis& d, const OverlaidChannel& o) {
+  const std::string& channel = o.channel;
   svg::LinePlot plot;
-  plot.title = channel;
+  plot.title = o.title;
   plot.x = {"t", "s", {}, {}};
   const bool angle = channel.find("rock") != std::string::npos || channel.find("twist") != std::string::npos;
   plot.y = {channel.substr(channel.find('.') + 1), angle ? "rad" : "m", {}, {}};
   auto add = [&](const std::vector<Recording>& runs, const char* label, bool dashed) {
-    for (const Recording& r : runs)
-      if (const RecordingChannel* c = r.find(channel)) plot.series.push_back({label, r.time, c->values, dashed});
+    if (o.recording >= runs.size()) return;
+    const Recording& r = runs[o.recording];
+    if (const RecordingChannel* c = r.find(channel)) plot.series.push_back({label, r.time, c->values, dashed});
   };
   add(d.recorded, "recorded", false);
   add(d.simulated_nominal, "model as given", true);
   if (!d.effects.empty()) add(d.simulated_final, "improved model", false);
-  for (const ChannelDivergence& c : d.divergence)
-    if (c.channel == channel && std::isfinite(c.time)) plot.markers.push_back({c.time, "diverges"});
+  for (const ChannelDivergence& c : d.divergence)  // named without the recording: marked for one recording only
+    if (d.recorded.size() == 1 && c.channel == channel && std::isfinite(c.time)) plot.markers.push_back({c.time, "diverges"});
   return svg::render(plot);
 }
 
@@ -85,9 +118,9 @@ void add_diagnosis_sections(HtmlReport& report, const Diagnosis& d) {
   for (std::string line; std::getline(lines, line);) report.add_paragraph(line);
   for (const MeasurementIssue& m : d.measurement) report.add_paragraph("Measurement issue: " + m.text);
   report.add_section("Before and after");
-  for (const std::string& channel : mismatched_channels(d))
-    report.add_figure(overlay(d, channel), channel + ": the recording (corrected for accepted measurement issues), "
-                                                     "the model as given (dashed) and the improved model");
+  for (const OverlaidChannel& o : mismatched_channels(d))
+    report.add_figure(overlay(d, o), o.title + ": the recording (corrected for accepted measurement issues), "
+                                               "the model as given (dashed) and the improved model");
   report.add_section("Candidates");
   for (std::size_t r = 0; r < d.rounds.size(); ++r) report.add_table(candidate_table(d, r));
   report.add_section("Event features");
