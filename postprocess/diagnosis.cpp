@@ -17,6 +17,7 @@
 #include "launched_body.h"
 #include "results_analysis.h"
 #include "scenario.h"
+#include "shooting.h"
 #include "synthetic_recording.h"
 
 namespace freestand::diagnosis {
@@ -859,6 +860,22 @@ std::vector<Recording> with_sensor_noise(const std::vector<Recording>& given, st
   return out;
 }
 
+// Multiple shooting: every recording cut into pieces that start from its measured rest states.
+std::vector<Recording> shooting_pieces(const std::vector<Recording>& recordings, std::vector<std::string>& notes) {
+  std::vector<Recording> out;
+  for (const Recording& r : recordings) {
+    std::vector<Recording> pieces = shooting_segments(r);
+    std::vector<std::string> starts;
+    for (const Recording& p : pieces) starts.push_back(fmt::format("{:.2f} s", p.time.front()));
+    notes.push_back(pieces.size() > 1 ? fmt::format("multiple shooting: {} cut into {} pieces starting from the measured "
+                                                    "rest state at {}", r.path, pieces.size(), fmt::join(starts, ", "))
+                                      : fmt::format("multiple shooting: {} not cut (one body resting on its base "
+                                                    "before a motion episode is needed)", r.path));
+    for (Recording& p : pieces) out.push_back(std::move(p));
+  }
+  return out;
+}
+
 // The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
 // (where the body states its orientation) and spin perturbed by the angle noise, each with
 // its own noise seed.
@@ -896,7 +913,8 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
 Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, const Options& options) {
   if (given.empty()) throw InputError("diagnose: no recording");
   Diagnosis d;
-  const std::vector<Recording> recordings = with_sensor_noise(given, d.notes);
+  const std::vector<Recording> recordings =
+      options.shooting ? shooting_pieces(with_sensor_noise(given, d.notes), d.notes) : with_sensor_noise(given, d.notes);
   // Bad input first: no partial verdict.
   for (const Recording& r : recordings) {
     const double duration = r.time.empty() ? 0 : r.time.back() - r.time.front();

@@ -92,6 +92,7 @@ struct Options {
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
   int max_effects = 3;        // iterations of the search
+  bool shooting = false;      // multiple shooting: cut single-body recordings at rests (shooting.h)
   std::string work_directory; // run directories (empty: a fresh temporary one, removed)
   std::function<void(const std::string& stage, long done, long total)> progress;
 };

@@ -138,6 +138,9 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--max-effects", o->options.max_effects, "effects searched for at most")
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
+  sub->add_flag("--shooting", o->options.shooting,
+                "multiple shooting: cut a single-body recording where the body rests before a motion episode and "
+                "start each piece from the measured rest state (docs/diagnose.md)");
   sub->callback([o] { guarded([&] { return diagnose_command(*o); }); });
 }
 
