@@ -38,13 +38,12 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 // residual of a model that ran (at least 1), so the optimiser moves away.
 const double kFailedResidual = 10.0;
 
-// Levenberg-Marquardt: the first step may move the scaled point by about its
-// own norm (MINPACK's `factor`; its default 100 makes the first step a plain
-// Gauss-Newton one, which from a poor start jumps across the event
-// discontinuities of the residuals), and the fit stops when a step lowers the
-// objective by less than 1e-4 of it (for a chi-square near n ~ 500, 0.05:
-// far below the change of 1 that one standard error makes).
-const double kLevenbergMarquardtFactor = 1.0;
+// Levenberg-Marquardt: the trust region is measured in the scaled
+// coordinates (every parameter spans [0, 1]), and the first step may move the
+// point by half its norm (MINPACK's `factor`; its default 100 makes the first
+// step a plain Gauss-Newton one, which from a poor start overshoots: friction
+// went from the start to a bound and back over 7 iterations).
+const double kLevenbergMarquardtFactor = 0.5;
 const double kLevenbergMarquardtFtol = 1e-4;
 
 // Default bounds and start of the parameters calibrate knows. Bounds are wide
@@ -506,10 +505,9 @@ class Search {
   }
 
   // d residuals / d scaled parameters by central differences, step
-  // kJacobianStep, the stencil clamped to [0, 1] (one-sided at a bound):
-  // 2 evaluations per parameter, simulated together. The last one is
-  // remembered: the covariance at the point where Levenberg-Marquardt
-  // stopped reuses it.
+  // kJacobianStep, the stencil clamped to [0, 1] (one-sided at a bound): 2 evaluations per parameter,
+  // simulated together. The last one is remembered: the covariance at the
+  // point where Levenberg-Marquardt stopped reuses it.
   const Eigen::MatrixXd& jacobian(const std::vector<double>& u) {
     if (u == jacobian_u_) return jacobian_;
     std::vector<std::vector<double>> stencil;
@@ -584,11 +582,12 @@ void minimise_derivative_free(Search& search, const std::vector<double>& u0, con
 }
 
 // The residual vector at P(x), P the projection onto the box [0, 1]^n, for
-// Eigen's Levenberg-Marquardt (which knows no bounds). Its Jacobian is the
-// finite-difference one at P(x) with the columns of coordinates beyond their
-// bound set to zero (P is constant there): a coordinate the fit pushes past
-// a bound stays at it. Refuses (returns -1, ending the minimisation) when
-// the evaluation would exceed the budget.
+// Eigen's Levenberg-Marquardt (which knows no bounds; the caller projects
+// each accepted point back into the box). Its Jacobian is the
+// finite-difference one at P(x), with the column of a parameter at a bound
+// that the gradient pushes outward set to zero: that bound is active, and
+// the step leaves the parameter on it. Refuses (returns -1, ending the
+// minimisation) an evaluation that would exceed the budget.
 class ProjectedResiduals {
  public:
   ProjectedResiduals(Search& search, int budget, Eigen::Index count)
@@ -597,25 +596,30 @@ class ProjectedResiduals {
 
   int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& residuals) const {
     if (search_.evaluations + 1 > budget_) return -1;
-    const std::vector<double>& r = search_.evaluate(project(x)).residuals;
-    residuals = Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
+    residuals = as_vector(search_.evaluate(project(x)).residuals);
     return 0;
   }
 
   // Returns the evaluations spent (Eigen adds them to its count).
   int df(const Eigen::VectorXd& x, Eigen::MatrixXd& jacobian) const {
     if (search_.evaluations + search_.jacobian_cost() > budget_) return -1;
-    jacobian = search_.jacobian(project(x));
+    const std::vector<double> u = project(x);
+    jacobian = search_.jacobian(u);
+    const Eigen::VectorXd gradient = jacobian.transpose() * as_vector(search_.evaluate(u).residuals);
     for (Eigen::Index i = 0; i < x.size(); ++i)
-      if (x[i] < 0.0 || x[i] > 1.0) jacobian.col(i).setZero();
+      if ((u[i] <= 0.0 && gradient[i] > 0.0) || (u[i] >= 1.0 && gradient[i] < 0.0)) jacobian.col(i).setZero();
     return search_.jacobian_cost();
   }
 
- private:
   static std::vector<double> project(const Eigen::VectorXd& x) {
     std::vector<double> u(x.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) u[i] = std::clamp(x[i], 0.0, 1.0);
     return u;
+  }
+
+ private:
+  static Eigen::VectorXd as_vector(const std::vector<double>& v) {
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
   }
   Search& search_;
   int budget_;
@@ -623,7 +627,9 @@ class ProjectedResiduals {
 };
 
 // Levenberg-Marquardt on the residual vector (docs/calibration.md): Eigen's
-// port of MINPACK's lmder with the parallel finite-difference Jacobian.
+// port of MINPACK's lmder with the parallel finite-difference Jacobian,
+// each accepted point projected into the box (a projected Levenberg-
+// Marquardt iteration).
 void minimise_levenberg_marquardt(Search& search, const std::vector<double>& u0, const CalibrationOptions& options) {
   const Eigen::Index count = static_cast<Eigen::Index>(search.evaluate(u0).residuals.size());
   ProjectedResiduals residuals(search, options.max_evaluations, count);
@@ -632,8 +638,15 @@ void minimise_levenberg_marquardt(Search& search, const std::vector<double>& u0,
   lm.parameters.factor = kLevenbergMarquardtFactor;
   lm.parameters.xtol = options.tolerance;
   lm.parameters.ftol = kLevenbergMarquardtFtol;
+  lm.useExternalScaling = true;
+  lm.diag = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(u0.size()));
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(u0.data(), static_cast<Eigen::Index>(u0.size()));
-  lm.minimize(x);
+  Eigen::LevenbergMarquardtSpace::Status status = lm.minimizeInit(x);
+  while (status == Eigen::LevenbergMarquardtSpace::NotStarted || status == Eigen::LevenbergMarquardtSpace::Running) {
+    status = lm.minimizeOneStep(x);
+    const std::vector<double> u = ProjectedResiduals::project(x);
+    x = Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<Eigen::Index>(u.size()));
+  }
 }
 }  // namespace
 

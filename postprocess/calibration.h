@@ -95,7 +95,7 @@ struct CalibrationOptions {
   std::vector<CalibrationParameter> parameters;
   int jobs = 2;                  // simulations at a time
   int max_evaluations = 60;      // evaluations by the optimiser (LM: Jacobian points included)
-  std::string algorithm = "bobyqa";  // lm (Levenberg-Marquardt), bobyqa, sbplx, neldermead (NLopt LN_*)
+  std::string algorithm = "lm";  // lm (Levenberg-Marquardt), bobyqa, sbplx, neldermead (NLopt LN_*)
   double tolerance = 1e-3;       // stop when a step changes the scaled parameters by less
   bool uncertainty = true;       // Gauss-Newton covariance (2 x parameters more evaluations)
   std::string work_directory;    // run directories go here (empty: a fresh temporary one, removed)

@@ -31,7 +31,7 @@ struct CalibrateOptions {
   std::vector<std::string> validate;    // predicted, not fitted
   std::string output;                   // calibrated scenario
   std::string report;                   // JSON with every number printed
-  std::string algorithm = "bobyqa";
+  std::string algorithm = "lm";
   int jobs = 2;
   int max_evaluations = 60;
   bool uncertainty = true;
