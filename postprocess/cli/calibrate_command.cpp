@@ -225,7 +225,7 @@ void add_calibrate_command(CLI::App& app) {
                   "per parameter, each iteration); bobyqa, sbplx, neldermead: NLopt derivative-free minimisers")
       ->capture_default_str()
       ->check(CLI::IsMember({"lm", "bobyqa", "sbplx", "neldermead"}));
-  sub->add_flag("!--no-uncertainty", o->uncertainty, "skip the standard errors (saves 2 evaluations per parameter)");
+  sub->add_flag("!--no-uncertainty", o->uncertainty, "skip the standard errors (saves up to 2 evaluations per parameter)");
   sub->add_flag("--per-configuration", o->per_configuration,
                 "fit each configuration (same bodies and interfaces) on its own, then average the fits");
   sub->add_flag("--no-fit", o->no_fit, "only predict the --validate recordings with the scenario as it is");
