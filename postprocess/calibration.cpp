@@ -651,6 +651,7 @@ void minimise_levenberg_marquardt(Search& search, const std::vector<double>& u0,
     x = Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<Eigen::Index>(u.size()));
   }
 }
+
 }  // namespace
 
 CalibrationParameter parse_calibration_parameter(const std::string& spec) {
