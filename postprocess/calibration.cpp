@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <nlopt.hpp>
+#include <unsupported/Eigen/NonLinearOptimization>
 #include <thread>
 
 #include "atomic_file.h"
@@ -37,6 +38,16 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 // residual of a model that ran (at least 1), so the optimiser moves away.
 const double kFailedResidual = 10.0;
 
+// Levenberg-Marquardt: the trust region is measured in the scaled
+// coordinates (every parameter spans [0, 1]), and the first step may move the
+// point by half its norm (MINPACK's `factor`; its default 100 makes the first
+// step a plain Gauss-Newton one, which the strongly nonlinear residuals of a
+// start far from the fit do not support; 0.5 was not tuned against other values).
+const double kLevenbergMarquardtFactor = 0.5;
+// It stops when a step lowers the objective by less than 1e-4 of it (for a
+// chi-square near n ~ 300, 0.03: far below the change of 1 that one standard
+// error makes).
+const double kLevenbergMarquardtFtol = 1e-4;
 
 // Default bounds and start of the parameters calibrate knows. Bounds are wide
 // on purpose: the data, not the defaults, should decide.
@@ -460,7 +471,7 @@ nlopt::algorithm nlopt_algorithm(const std::string& name) {
   if (name == "bobyqa") return nlopt::LN_BOBYQA;
   if (name == "sbplx") return nlopt::LN_SBPLX;
   if (name == "neldermead") return nlopt::LN_NELDERMEAD;
-  throw InputError(fmt::format("calibration: unknown algorithm '{}' (bobyqa, sbplx, neldermead)", name));
+  throw InputError(fmt::format("calibration: unknown algorithm '{}' (lm, bobyqa, sbplx, neldermead)", name));
 }
 
 // Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
@@ -468,6 +479,177 @@ double t_quantile_975(int dof) {
   static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228};
   if (dof < 1) return kNaN;
   return dof <= 10 ? table[dof - 1] : dof <= 30 ? 2.042 + (2.228 - 2.042) * (30 - dof) / 20.0 : 1.96;
+}
+
+
+// The evaluations of one fit: every point evaluated (by the optimiser or for
+// a Jacobian) counts against the budget, goes to the progress callback, and
+// becomes the best point when it lowers the objective.
+class Search {
+ public:
+  Search(Evaluator& evaluator, const CalibrationOptions& options) : evaluator_(evaluator), options_(options) {}
+
+  std::vector<Evaluator::Point> evaluate(const std::vector<std::vector<double>>& points) {
+    std::vector<Evaluator::Point> evaluated = evaluator_.evaluate(points);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const double ssr = sum_of_squares(evaluated[p].residuals);
+      if (evaluations++ == 0) start = evaluated[p];
+      if (ssr < best_objective) best_objective = ssr, best = evaluated[p], best_u = points[p];
+      if (options_.progress) options_.progress(evaluations, ssr);
+    }
+    return evaluated;
+  }
+
+  // One point; the last one is remembered (Levenberg-Marquardt asks for its
+  // start again after the caller evaluated it to learn the residual count).
+  const Evaluator::Point& evaluate(const std::vector<double>& u) {
+    if (u != last_u_) last_ = evaluate(std::vector<std::vector<double>>{u}).front(), last_u_ = u;
+    return last_;
+  }
+
+  // d residuals / d scaled parameters by central differences, step
+  // kJacobianStep, the stencil clamped to [0, 1] (one-sided at a bound): 2 evaluations per parameter,
+  // simulated together. The last one is remembered: the covariance at the
+  // point where Levenberg-Marquardt stopped reuses it.
+  const Eigen::MatrixXd& jacobian(const std::vector<double>& u) {
+    if (u == jacobian_u_) return jacobian_;
+    std::vector<std::vector<double>> stencil;
+    for (std::size_t i = 0; i < u.size(); ++i)
+      for (int sign : {1, -1}) {
+        stencil.push_back(u);
+        stencil.back()[i] = std::clamp(u[i] + sign * kJacobianStep, 0.0, 1.0);
+      }
+    const std::vector<Evaluator::Point> evaluated = evaluate(stencil);
+    const std::size_t rows = evaluated.front().residuals.size();
+    jacobian_.resize(rows, u.size());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const double span = stencil[2 * i][i] - stencil[2 * i + 1][i];
+      for (std::size_t k = 0; k < rows; ++k)
+        jacobian_(k, i) = (evaluated[2 * i].residuals[k] - evaluated[2 * i + 1].residuals[k]) / span;
+    }
+    jacobian_u_ = u;
+    return jacobian_;
+  }
+
+  // Evaluations one Jacobian costs.
+  int jacobian_cost() const { return 2 * static_cast<int>(options_.parameters.size()); }
+
+  int evaluations = 0;
+  Evaluator::Point start, best;
+  double best_objective = std::numeric_limits<double>::infinity();
+  std::vector<double> best_u;
+
+  // 2 % of each scaled range: large enough to step over the event noise of
+  // the residuals (impacts resolved at the time step).
+  static constexpr double kJacobianStep = 0.02;
+
+ private:
+  Evaluator& evaluator_;
+  const CalibrationOptions& options_;
+  std::vector<double> last_u_, jacobian_u_;
+  Evaluator::Point last_;
+  Eigen::MatrixXd jacobian_;
+};
+
+// NLopt's derivative-free minimisers on the sum of squares.
+void minimise_derivative_free(Search& search, const std::vector<double>& u0, const CalibrationOptions& options) {
+  auto objective = [&](const std::vector<double>& u) { return sum_of_squares(search.evaluate(u).residuals); };
+  const std::size_t n = u0.size();
+  nlopt::opt opt(nlopt_algorithm(options.algorithm), n);
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  opt.set_min_objective(
+      [](const std::vector<double>& u, std::vector<double>&, void* data) {
+        return (*static_cast<decltype(objective)*>(data))(u);
+      },
+      &objective);
+  opt.set_xtol_abs(options.tolerance);
+  // A trust region that shrank along a narrow curved valley (stiffness
+  // against restitution in free rocking) stops short of the minimum:
+  // restart from the best point with a fresh region while evaluations remain
+  // and a restart still improves the objective.
+  double step = 0.15, previous = 0.0;  // first a seventh of each scaled range: a move that events can feel
+  std::vector<double> u = u0;
+  do {
+    previous = search.best_objective;
+    opt.set_maxeval(options.max_evaluations - search.evaluations);
+    opt.set_initial_step(step);
+    double minimum = 0.0;
+    try {
+      opt.optimize(u, minimum);
+    } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
+    }
+    u = search.best_u;
+    step = 0.05;
+  } while (search.evaluations < options.max_evaluations && search.best_objective < previous);
+}
+
+// The residual vector at P(x), P the projection onto the box [0, 1]^n, for
+// Eigen's Levenberg-Marquardt (which knows no bounds; the caller projects
+// each accepted point back into the box). Its Jacobian is the
+// finite-difference one at P(x), with the column of a parameter at a bound
+// that the gradient pushes outward set to zero: that bound is active, and
+// the step leaves the parameter on it. Refuses (returns -1, ending the
+// minimisation) an evaluation that would exceed the budget.
+class ProjectedResiduals {
+ public:
+  ProjectedResiduals(Search& search, int budget, Eigen::Index count)
+      : search_(search), budget_(budget), count_(count) {}
+  Eigen::Index values() const { return count_; }
+
+  int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& residuals) const {
+    if (search_.evaluations + 1 > budget_) return -1;
+    residuals = as_vector(search_.evaluate(project(x)).residuals);
+    return 0;
+  }
+
+  // Returns the evaluations spent (Eigen adds them to its count).
+  int df(const Eigen::VectorXd& x, Eigen::MatrixXd& jacobian) const {
+    if (search_.evaluations + search_.jacobian_cost() > budget_) return -1;
+    const std::vector<double> u = project(x);
+    jacobian = search_.jacobian(u);
+    const Eigen::VectorXd gradient = jacobian.transpose() * as_vector(search_.evaluate(u).residuals);
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      if ((u[i] <= 0.0 && gradient[i] > 0.0) || (u[i] >= 1.0 && gradient[i] < 0.0)) jacobian.col(i).setZero();
+    return search_.jacobian_cost();
+  }
+
+  static std::vector<double> project(const Eigen::VectorXd& x) {
+    std::vector<double> u(x.size());
+    for (Eigen::Index i = 0; i < x.size(); ++i) u[i] = std::clamp(x[i], 0.0, 1.0);
+    return u;
+  }
+
+ private:
+  static Eigen::VectorXd as_vector(const std::vector<double>& v) {
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+  }
+  Search& search_;
+  int budget_;
+  Eigen::Index count_;
+};
+
+// Levenberg-Marquardt on the residual vector (docs/calibration.md): Eigen's
+// port of MINPACK's lmder with the parallel finite-difference Jacobian,
+// each accepted point projected into the box (a projected Levenberg-
+// Marquardt iteration).
+void minimise_levenberg_marquardt(Search& search, const std::vector<double>& u0, const CalibrationOptions& options) {
+  const Eigen::Index count = static_cast<Eigen::Index>(search.evaluate(u0).residuals.size());
+  ProjectedResiduals residuals(search, options.max_evaluations, count);
+  Eigen::LevenbergMarquardt<ProjectedResiduals> lm(residuals);
+  lm.parameters.maxfev = options.max_evaluations;
+  lm.parameters.factor = kLevenbergMarquardtFactor;
+  lm.parameters.xtol = options.tolerance;
+  lm.parameters.ftol = kLevenbergMarquardtFtol;
+  lm.useExternalScaling = true;
+  lm.diag = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(u0.size()));
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(u0.data(), static_cast<Eigen::Index>(u0.size()));
+  Eigen::LevenbergMarquardtSpace::Status status = lm.minimizeInit(x);
+  while (status == Eigen::LevenbergMarquardtSpace::NotStarted || status == Eigen::LevenbergMarquardtSpace::Running) {
+    status = lm.minimizeOneStep(x);
+    const std::vector<double> u = ProjectedResiduals::project(x);
+    x = Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<Eigen::Index>(u.size()));
+  }
 }
 
 }  // namespace
@@ -682,75 +864,31 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
   const bool own_directory = options.work_directory.empty();
   const std::string directory = own_directory ? make_temporary_directory() : options.work_directory;
   Evaluator evaluator(model, recordings, options, directory);
+  Search search(evaluator, options);
   const std::size_t n = params.size();
 
   std::vector<double> u0;
   for (const CalibrationParameter& p : params) u0.push_back(to_scaled(p, p.start));
+  if (options.algorithm == "lm") minimise_levenberg_marquardt(search, u0, options);
+  else minimise_derivative_free(search, u0, options);
+  // The fit is the best point of the search; the Jacobian stencil around it
+  // does not move it (the covariance needs the residuals where J was taken).
+  const Evaluator::Point best = search.best;
+  const std::vector<double> best_u = search.best_u;
   CalibrationResult result;
-  Evaluator::Point start, best;
-  double best_objective = std::numeric_limits<double>::infinity();
-  std::vector<double> best_u = u0;
-  auto objective = [&](const std::vector<double>& u) {
-    Evaluator::Point point = evaluator.evaluate({u}).front();
-    const double ssr = sum_of_squares(point.residuals);
-    if (result.evaluations++ == 0) start = point, result.objective_start = ssr;
-    if (ssr < best_objective) best_objective = ssr, best = point, best_u = u;
-    if (options.progress) options.progress(result.evaluations, ssr);
-    return ssr;
-  };
-  nlopt::opt opt(nlopt_algorithm(options.algorithm), n);
-  opt.set_lower_bounds(std::vector<double>(n, 0.0));
-  opt.set_upper_bounds(std::vector<double>(n, 1.0));
-  opt.set_min_objective(
-      [](const std::vector<double>& u, std::vector<double>&, void* data) {
-        return (*static_cast<decltype(objective)*>(data))(u);
-      },
-      &objective);
-  opt.set_xtol_abs(options.tolerance);
-  // A trust region that shrank along a narrow curved valley (stiffness
-  // against restitution in free rocking) stops short of the minimum:
-  // restart from the best point with a fresh region while evaluations remain
-  // and a restart still improves the objective.
-  double step = 0.15, previous = 0.0;  // first a seventh of each scaled range: a move that events can feel
-  do {
-    previous = best_objective;
-    opt.set_maxeval(options.max_evaluations - result.evaluations);
-    opt.set_initial_step(step);
-    std::vector<double> u = best_u;
-    double minimum = 0.0;
-    try {
-      opt.optimize(u, minimum);
-    } catch (const nlopt::roundoff_limited&) {  // converged as far as the objective resolves: keep the best
-    }
-    step = 0.05;
-  } while (result.evaluations < options.max_evaluations && best_objective < previous);
-  result.objective = best_objective;
+  result.objective_start = sum_of_squares(search.start.residuals);
+  result.objective = sum_of_squares(best.residuals);
   result.residual_count = static_cast<int>(best.residuals.size());
   for (std::size_t r = 0; r < recordings.size(); ++r)
-    result.recordings.push_back({recordings[r].path, evaluator.kind(r), start.recording_rms[r], best.recording_rms[r]});
+    result.recordings.push_back(
+        {recordings[r].path, evaluator.kind(r), search.start.recording_rms[r], best.recording_rms[r]});
 
-  // Gauss-Newton covariance from central differences of the residual vector
-  // in the scaled coordinates (one-sided at a bound), inflated for residuals
+  // Gauss-Newton covariance in the scaled coordinates, inflated for residuals
   // correlated in time (serial_inflation).
   std::vector<double> standard_error(n, kNaN);
   const int dof = result.residual_count - static_cast<int>(n);
   if (options.uncertainty && dof > 0) {
-    const double h = 0.02;  // 2 % of the range: large enough to step over the event noise of the objective
-    std::vector<std::vector<double>> points;
-    for (std::size_t i = 0; i < n; ++i)
-      for (int sign : {1, -1}) {
-        std::vector<double> p = best_u;
-        p[i] = std::clamp(p[i] + sign * h, 0.0, 1.0);
-        points.push_back(p);
-      }
-    const std::vector<Evaluator::Point> evaluated = evaluator.evaluate(points);
-    result.evaluations += static_cast<int>(points.size());
-    Eigen::MatrixXd J(result.residual_count, n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double span = points[2 * i][i] - points[2 * i + 1][i];
-      for (int k = 0; k < result.residual_count; ++k)
-        J(k, i) = (evaluated[2 * i].residuals[k] - evaluated[2 * i + 1].residuals[k]) / span;
-    }
+    const Eigen::MatrixXd J = search.jacobian(best_u);
     std::vector<double> inflation;
     for (std::size_t r = 0, first = 0; r < recordings.size(); first += evaluator.residual_count(r++)) {
       inflation.push_back(serial_inflation(best.residuals, first, first + evaluator.residual_count(r),
@@ -758,13 +896,14 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
       result.recordings[r].variance_inflation = inflation.back();
     }
     long rank = 0;
-    const Eigen::MatrixXd covariance = sandwich_covariance(J, inflation, evaluator, best_objective / dof, &rank);
+    const Eigen::MatrixXd covariance = sandwich_covariance(J, inflation, evaluator, result.objective / dof, &rank);
     const Eigen::VectorXd d = covariance.diagonal().cwiseSqrt();
     result.correlation = covariance.cwiseQuotient(d * d.transpose());
     for (std::size_t i = 0; i < n; ++i)
       standard_error[i] = rank == static_cast<long>(n) ? d[i] * scale_span(params[i])
                                                        : std::numeric_limits<double>::infinity();
   }
+  result.evaluations = search.evaluations;
   std::vector<double> values;
   for (std::size_t i = 0; i < n; ++i) {
     values.push_back(to_value(params[i], best_u[i]));

@@ -5,7 +5,8 @@
 // each recording is simulated with freestand-lmp under candidate parameter
 // values, its recorded channels are reduced to residuals (per-impact features
 // for free rocking, histories for a moving table, the pose for a tossed or
-// launched body), NLopt minimises the sum of squared residuals, and a
+// launched body), Levenberg-Marquardt (Eigen) or a derivative-free NLopt
+// method minimises the sum of squared residuals, and a
 // Gauss-Newton covariance at the optimum, inflated for residuals correlated
 // in time, gives the uncertainty.
 
@@ -93,8 +94,8 @@ TrajectoryErrors trajectory_errors(const Recording& recorded, const Recording& s
 struct CalibrationOptions {
   std::vector<CalibrationParameter> parameters;
   int jobs = 2;                  // simulations at a time
-  int max_evaluations = 60;      // objective evaluations by the optimiser
-  std::string algorithm = "bobyqa";  // bobyqa, sbplx, neldermead (NLopt LN_*)
+  int max_evaluations = 60;      // evaluations by the optimiser (LM: Jacobian points included)
+  std::string algorithm = "lm";  // lm (Levenberg-Marquardt), bobyqa, sbplx, neldermead (NLopt LN_*)
   double tolerance = 1e-3;       // stop when a step changes the scaled parameters by less
   bool uncertainty = true;       // Gauss-Newton covariance (2 x parameters more evaluations)
   std::string work_directory;    // run directories go here (empty: a fresh temporary one, removed)

@@ -31,7 +31,7 @@ struct CalibrateOptions {
   std::vector<std::string> validate;    // predicted, not fitted
   std::string output;                   // calibrated scenario
   std::string report;                   // JSON with every number printed
-  std::string algorithm = "bobyqa";
+  std::string algorithm = "lm";
   int jobs = 2;
   int max_evaluations = 60;
   bool uncertainty = true;
@@ -201,8 +201,8 @@ void add_calibrate_command(CLI::App& app) {
       "calibrate",
       "Fit contact parameters to recordings (docs/calibration.md). Each recording is re-simulated under the\n"
       "SCENARIO's contact and simulation settings with the recording's own bodies, initial state and table\n"
-      "motion; NLopt minimises the mismatch: impact times and amplitudes for free rocking, channel histories\n"
-      "for a moving table, the pose for a launched body. Prints the best-fit values with standard errors and\n"
+      "motion; the optimiser minimises the mismatch: impact times and amplitudes for free rocking, channel\n"
+      "histories for a moving table, the pose for a launched body. Prints the best-fit values with standard errors and\n"
       "95 % intervals (Gauss-Newton covariance) and the fit quality, and writes the calibrated scenario.");
   sub->add_option("scenario", o->scenario, "scenario JSON: the model (contact, simulation; its bodies are not used)")
       ->required()
@@ -216,13 +216,16 @@ void add_calibrate_command(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "calibrated scenario (default: SCENARIO stem + .calibrated.json, here)");
   sub->add_option("--report", o->report, "write every number printed, as JSON");
   sub->add_option("--jobs", o->jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
-  sub->add_option("--max-evaluations", o->max_evaluations, "objective evaluations of the optimiser")
+  sub->add_option("--max-evaluations", o->max_evaluations,
+                  "evaluations (each simulates every recording) by the optimiser, Jacobians included")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--algorithm", o->algorithm, "NLopt derivative-free algorithm")
+  sub->add_option("--algorithm", o->algorithm,
+                  "lm: Levenberg-Marquardt on the residual vector (a finite-difference Jacobian, 2 evaluations\n"
+                  "per parameter, each iteration); bobyqa, sbplx, neldermead: NLopt derivative-free minimisers")
       ->capture_default_str()
-      ->check(CLI::IsMember({"bobyqa", "sbplx", "neldermead"}));
-  sub->add_flag("!--no-uncertainty", o->uncertainty, "skip the standard errors (saves 2 evaluations per parameter)");
+      ->check(CLI::IsMember({"lm", "bobyqa", "sbplx", "neldermead"}));
+  sub->add_flag("!--no-uncertainty", o->uncertainty, "skip the standard errors (saves up to 2 evaluations per parameter)");
   sub->add_flag("--per-configuration", o->per_configuration,
                 "fit each configuration (same bodies and interfaces) on its own, then average the fits");
   sub->add_flag("--no-fit", o->no_fit, "only predict the --validate recordings with the scenario as it is");
