@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""What the cube-toss recordings themselves say (docs/validation.md, "Cube tosses"):
-the free-fall acceleration in the flight samples, the deceleration of face-on sliding,
+"""What the cube-toss recordings themselves say (docs/validation.md, "Cube tosses";
+docs/recordings.md): how the file's velocities were made, the free-fall acceleration in the flight samples, the deceleration of face-on sliding,
 and how far the corners dip below their resting height during impacts.
 
   bench/cube_toss_data.py [../shared/data/experiments/cube_toss/cube_tosses_0-299.csv.gz] [--first 0] [--last 149]
@@ -36,6 +36,18 @@ def free_fall(toss):
     return np.linalg.lstsq(np.stack([np.ones(n), t, t * t / 2], -1), x[:n], rcond=None)[0][2]
 
 
+def velocity_differences(tosses):
+    """Median |v_file - difference of positions| (m/s, per axis) in the first samples, for
+    backward, forward and central differences."""
+    rows = {"backward": [], "forward": [], "central": []}
+    for toss in tosses:
+        x, v = toss[:7, 7:10], toss[:7, 13:16]
+        rows["backward"].append(v[1:6] - (x[1:6] - x[0:5]) * HZ)
+        rows["forward"].append(v[1:6] - (x[2:7] - x[1:6]) * HZ)
+        rows["central"].append(v[1:6] - (x[2:7] - x[0:5]) * HZ / 2)
+    return {name: np.median(np.abs(np.concatenate(r)), axis=0) for name, r in rows.items()}
+
+
 def face_sliding(toss):
     """Deceleration / g of each phase sliding face-on (4 corners down, moving)."""
     x, q = toss[:, 7:10], toss[:, 3:7]
@@ -65,6 +77,9 @@ def main():
     parser.add_argument("--last", type=int, default=149)
     args = parser.parse_args()
     tosses = [t for i, t in read(args.tosses).items() if args.first <= i <= args.last]
+    for name, error in velocity_differences(tosses).items():
+        print(f"file velocity against the {name} difference of positions: median |difference| "
+              f"{np.round(1e3 * error, 1)} mm/s (x, y, z)")
     falls = np.array([a for a in map(free_fall, tosses) if a is not None])
     print(f"free fall over {len(falls)} tosses' flight samples (>= {MIN_SAMPLES}): acceleration "
           f"{np.round(falls.mean(axis=0), 3)} m/s^2, standard error {np.round(falls.std(axis=0) / np.sqrt(len(falls)), 3)}")
