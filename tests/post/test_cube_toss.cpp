@@ -218,12 +218,12 @@ TEST(CubeTossFlight, NoisyTossWithinTheLeastSquaresError) {
     const Eigen::Vector3d r = sigma_r * Eigen::Vector3d(normal(random), normal(random), normal(random));
     s.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(r.norm(), r.normalized())) * s.orientation;
   }
-  // A least-squares line through n samples h apart: slope error
-  // sigma / (h sqrt(n (n^2 - 1) / 12)), intercept error sigma sqrt((4n + 2) / (n (n - 1))).
-  // Per component; 4.5 of those on the norm of three (chi with 3 dof: P < 1e-4).
+  // A least-squares line through n samples h apart from t = 0: slope error
+  // sigma / (h sqrt(n (n^2 - 1) / 12)), intercept error sigma sqrt((4n - 2) / (n (n + 1))).
+  // Per component; 4.5 of those on the norm of three (chi-square 20.25 with 3 dof: P = 2e-4).
   const CubeFlightState f = cube_flight_state(samples);
   const double n = f.samples, spread = std::sqrt(n * (n * n - 1) / 12) / 148.0;
-  const double intercept = std::sqrt((4 * n + 2) / (n * (n - 1)));
+  const double intercept = std::sqrt((4 * n - 2) / (n * (n + 1)));
   ASSERT_EQ(f.samples, static_cast<int>(samples.size()));
   EXPECT_LT((f.velocity - kV0).norm(), 4.5 * sigma_x / spread);
   EXPECT_LT((f.centre - kX0).norm(), 4.5 * sigma_x * intercept);
