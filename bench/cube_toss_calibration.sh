@@ -4,7 +4,8 @@
 # (docs/validation.md, "Cube tosses: calibration and prediction").
 #   bench/cube_toss_calibration.sh [OUT_DIR] [FIT_EVERY]
 # FIT_EVERY: fit on every FIT_EVERY-th toss of 0-149 (default 5: 30 tosses per
-# evaluation, about 10 s on 2 cores; 1 fits all 150).
+# evaluation, about 10 s on 2 cores; 1 fits all 150). About 13 min in all;
+# bench/cube_toss_study.py breaks the prediction down per toss.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-cube_toss_calibration}

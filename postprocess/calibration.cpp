@@ -952,4 +952,14 @@ CalibrationResult average_calibrations(const std::vector<CalibrationResult>& fit
   return average;
 }
 
+json calibrated_scenario(const json& model, const std::vector<ParameterEstimate>& fitted, const Recording& recording,
+                         const std::string& table_file) {
+  json document = recording_scenario(model, recording, table_file);
+  std::vector<CalibrationParameter> parameters;
+  std::vector<double> values;
+  for (const ParameterEstimate& e : fitted) parameters.push_back(e.parameter), values.push_back(e.value);
+  apply_parameters(document, parameters, values);
+  return document;
+}
+
 }  // namespace freestand

@@ -144,6 +144,14 @@ std::vector<Recording> simulate_recordings(const std::vector<nlohmann::json>& mo
                                            const std::string& directory, int jobs,
                                            std::vector<std::exception_ptr>* failures = nullptr);
 
+// The scenario that predicts `recording` with a calibrated model: the
+// recording's scenario (recording_scenario) with the `fitted` values set on top
+// (apply_parameters), as the fit simulated it. The nominal's interface mu and
+// table_height would otherwise override the values the calibrated model holds
+// in `contact` and at its top level.
+nlohmann::json calibrated_scenario(const nlohmann::json& model, const std::vector<ParameterEstimate>& fitted,
+                                   const Recording& recording, const std::string& table_file);
+
 }  // namespace freestand
 
 #endif

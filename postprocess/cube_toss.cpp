@@ -106,12 +106,38 @@ Eigen::Quaterniond base_relabelling(const Eigen::Quaterniond& final_orientation)
 
 json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// Height of the lowest corner of a cube of edge `edge` in pose (centre, q).
+double lowest_corner(const Eigen::Vector3d& centre, const Eigen::Quaterniond& q, double edge) {
+  // The lowest corner of a centred cube lies (edge / 2) sum_i |R_zi| below its centre.
+  return centre.z() - edge / 2 * q.toRotationMatrix().row(2).cwiseAbs().sum();
+}
+
+// Least-squares line y = a + b t through rows of `values` (one column per
+// component): row 0 the intercepts a, row 1 the slopes b.
+Eigen::Matrix<double, 2, 3> fit_lines(const Eigen::VectorXd& t, const Eigen::MatrixX3d& values) {
+  Eigen::MatrixX2d design(t.size(), 2);
+  design.col(0).setOnes();
+  design.col(1) = t;
+  return design.colPivHouseholderQr().solve(values);
+}
+
+// Rotation vector of q (angle times axis, angle in [0, pi]) and back.
+Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
+  const Eigen::AngleAxisd a(q);
+  return a.angle() * a.axis();
+}
+Eigen::Quaterniond rotation(const Eigen::Vector3d& r) {
+  const double angle = r.norm();
+  return angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle)) : Eigen::Quaterniond::Identity();
+}
+
 json cube_nominal(int id, const std::vector<CubeTossSample>& samples, const CubeTossModel& m,
-                  const Eigen::Quaterniond& relabel, const Eigen::Quaterniond& q0) {
-  const CubeTossSample& first = samples.front();
+                  const Eigen::Quaterniond& relabel) {
+  const CubeFlightState flight = cube_flight_state(samples, m);
+  Eigen::Quaterniond q0 = flight.orientation * relabel;
+  if (q0.w() < 0) q0.coeffs() *= -1;
   const double half = m.edge / 2;
-  const Eigen::Vector3d base = first.centre - q0 * Eigen::Vector3d(0, 0, half);
-  const Eigen::Vector3d omega_world = first.orientation * first.omega_body;
+  const Eigen::Vector3d base = flight.centre - q0 * Eigen::Vector3d(0, 0, half);
   const double i = m.inertia;
   json cube = {{"name", "cube"},
                {"shape", "box"},
@@ -122,8 +148,8 @@ json cube_nominal(int id, const std::vector<CubeTossSample>& samples, const Cube
                {"supported_by", "table"},
                {"position", vector_json(base)},
                {"orientation", {q0.w(), q0.x(), q0.y(), q0.z()}},
-               {"velocity", vector_json(first.velocity)},
-               {"omega", vector_json(omega_world)}};
+               {"velocity", vector_json(flight.velocity)},
+               {"omega", vector_json(flight.omega)}};
   json columns = json::object();
   for (const char* c : {"x", "y", "z"})
     columns[std::string("cube.") + c] = fmt::format("cube centre {}, world frame (m)", c);
@@ -140,8 +166,12 @@ json cube_nominal(int id, const std::vector<CubeTossSample>& samples, const Cube
                                  "DAIRLab/dair_pll assets/contactnets_cube, commit 523d372d). "
                                  "Body frame = tracked frame turned by the cube symmetry "
                                  "[w, x, y, z] = [{:.6g}, {:.6g}, {:.6g}, {:.6g}] so that the "
-                                 "face it rests on at the end is the base",
-                                 id, relabel.w(), relabel.x(), relabel.y(), relabel.z())}};
+                                 "face it rests on at the end is the base. Initial state: {}",
+                                 id, relabel.w(), relabel.x(), relabel.y(), relabel.z(),
+                                 flight.samples > 0
+                                     ? fmt::format("least-squares free flight through samples 0-{}",
+                                                   flight.samples - 1)
+                                     : std::string("the first sample (fewer than 2 in free flight)"))}};
 }
 
 }  // namespace
@@ -182,6 +212,42 @@ std::map<int, std::vector<CubeTossSample>> read_cube_tosses(const std::string& g
   return tosses;
 }
 
+CubeFlightState cube_flight_state(const std::vector<CubeTossSample>& samples, const CubeTossModel& model,
+                                  double gravity) {
+  if (samples.empty()) throw InputError("cube toss: no samples");
+  std::size_t n = 0;
+  while (n < samples.size() &&
+         lowest_corner(samples[n].centre, samples[n].orientation, model.edge) > model.table_height + model.flight_clearance)
+    ++n;
+  const CubeTossSample& first = samples.front();
+  if (n < 2) return {first.centre, first.velocity, first.orientation, first.orientation * first.omega_body, 0};
+  Eigen::VectorXd t(n);
+  Eigen::MatrixX3d centres(n, 3), turns(n, 3);
+  for (std::size_t k = 0; k < n; ++k) {
+    t[k] = (samples[k].k - first.k) / model.sampling_hz;
+    centres.row(k) = samples[k].centre + Eigen::Vector3d(0, 0, gravity * t[k] * t[k] / 2);
+  }
+  const Eigen::Matrix<double, 2, 3> flight = fit_lines(t, centres);
+  // R_k = exp(omega t_k) R0: rotation vectors of R_k relative to a reference
+  // lie on a line when the reference is R0. Gauss-Newton from the first
+  // sample: the line's intercept is the reference's offset from R0 (to first
+  // order), so turn the reference by it until it vanishes.
+  Eigen::Quaterniond reference = first.orientation;
+  Eigen::Matrix<double, 2, 3> spin;
+  // The offset shrinks by the ratio of the neglected second-order terms
+  // (|omega t| |offset| / 2, well below 1): 1e-12 rad within a few steps.
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    for (std::size_t k = 0; k < n; ++k)
+      turns.row(k) = rotation_vector(samples[k].orientation * reference.conjugate());
+    spin = fit_lines(t, turns);
+    const Eigen::Vector3d offset = spin.row(0).transpose();
+    reference = (rotation(offset) * reference).normalized();
+    if (offset.norm() < 1e-12) break;
+  }
+  return {flight.row(0).transpose(), flight.row(1).transpose(), reference, spin.row(1).transpose(),
+          static_cast<int>(n)};
+}
+
 Recording cube_toss_recording(int id, const std::vector<CubeTossSample>& samples,
                               const CubeTossModel& model) {
   if (samples.empty()) throw InputError(fmt::format("cube toss {}: no samples", id));
@@ -210,7 +276,7 @@ Recording cube_toss_recording(int id, const std::vector<CubeTossSample>& samples
     for (std::size_t c = 0; c < modes.size(); ++c) r.channels[c].values[s.k] = modes[c];
     for (std::size_t c = 0; c < pose.size(); ++c) r.channels[modes.size() + c].values[s.k] = pose[c];
   }
-  r.nominal = cube_nominal(id, samples, model, relabel, q0);
+  r.nominal = cube_nominal(id, samples, model, relabel);
   return r;
 }
 

@@ -33,7 +33,29 @@ struct CubeTossModel {
   double mu = 0.15;             // the authors' model friction (not a measurement)
   double sampling_hz = 148.0;   // optical tracking rate
   double table_height = -0.001; // table plane z in the tracking frame (m), "about 1 mm below 0"
+  // A sample is in free flight while every corner is this far above the table
+  // (m): the table height is known to about 0.3 mm (spread of the resting
+  // heights) and the tracked corners to about 0.8 mm (the resting faces tilt by
+  // up to 0.6 deg at 74 mm from the centre).
+  double flight_clearance = 0.002;
 };
+
+// The state of a toss at its first sample, from a least-squares fit of free
+// flight to the samples before the cube can touch the table: the centre
+// follows x0 + v0 t - g t^2 / 2 e_z, the orientation exp(omega t) R0 (torque-free
+// motion of a body with isotropic inertia: the world angular velocity is
+// constant). The data set's velocities are backward differences, the velocity
+// half a sample (3.4 ms) earlier (vz too high by g / 296 = 0.033 m/s), and
+// each rests on two noisy samples.
+struct CubeFlightState {
+  Eigen::Vector3d centre;          // m, world
+  Eigen::Vector3d velocity;        // m/s, world
+  Eigen::Quaterniond orientation;  // tracked body frame -> world
+  Eigen::Vector3d omega;           // rad/s, world
+  int samples = 0;                 // flight samples fitted; 0: fewer than 2, the first sample's values
+};
+CubeFlightState cube_flight_state(const std::vector<CubeTossSample>& samples, const CubeTossModel& model = {},
+                                  double gravity = 9.81);
 
 // Every toss in the gzipped CSV, by toss id, samples in k order. Throws
 // InputError naming file and line for a malformed file.
@@ -41,7 +63,8 @@ std::map<int, std::vector<CubeTossSample>> read_cube_tosses(const std::string& g
 
 // Toss `id` as a recording (path left empty). The body frame is the tracked
 // frame turned by a symmetry of the cube so that the face the cube rests on
-// at the end of the toss is the base (docs/recordings.md).
+// at the end of the toss is the base (docs/recordings.md). The nominal's
+// initial state is cube_flight_state().
 Recording cube_toss_recording(int id, const std::vector<CubeTossSample>& samples,
                               const CubeTossModel& model = {});
 

@@ -80,12 +80,15 @@ json estimates_json(const CalibrationResult& result) {
   return out;
 }
 
-// Predicts `paths` with `model`; prints and returns the comparison.
-json predict(const std::string& label, const json& model, const std::vector<Recording>& recordings, int jobs) {
+// Predicts `recordings` with `model` and the `fitted` values on top
+// (calibrated_scenario; none: the model as given); prints and returns the
+// comparison.
+json predict(const std::string& label, const json& model, const std::vector<ParameterEstimate>& fitted,
+             const std::vector<Recording>& recordings, int jobs) {
   std::vector<json> models;
   std::vector<const Recording*> runs;
   for (const Recording& r : recordings) {
-    models.push_back(recording_scenario(model, r, "table_motion.csv"));
+    models.push_back(calibrated_scenario(model, fitted, r, "table_motion.csv"));
     runs.push_back(&r);
   }
   const std::string directory = (fs::temp_directory_path() / fmt::format("freestand_predict_{}", ::getpid())).string();
@@ -186,8 +189,9 @@ int calibrate_command(const CalibrateOptions& o) {
   }
   if (!held_out.empty()) {
     fmt::print("prediction of {} held-out recording{}:\n", held_out.size(), held_out.size() > 1 ? "s" : "");
-    report["prediction"].push_back(predict("uncalibrated", scenario.document, held_out, o.jobs));
-    if (!o.no_fit) report["prediction"].push_back(predict("calibrated", result.model, held_out, o.jobs));
+    report["prediction"].push_back(predict("uncalibrated", scenario.document, {}, held_out, o.jobs));
+    if (!o.no_fit)
+      report["prediction"].push_back(predict("calibrated", result.model, result.estimates, held_out, o.jobs));
   }
   if (!o.report.empty()) write_file_atomically(o.report, report.dump(2) + "\n");
   return 0;
