@@ -37,25 +37,27 @@ const std::size_t kAttempts = 3;   // best candidates refined and tested per rou
 
 const std::vector<CatalogueEntry> kCatalogue = {
     {"restitution", "interface", "interfaces[i].restitution",
-     "the {} impacts lose a different share of their energy than assumed (restitution)", true},
+     "the {} impacts lose a different share of their energy than assumed (restitution)"},
     {"contact_stiffness", "interface", "interfaces[i].contact_stiffness (table interface)",
-     "the {} contact is softer or stiffer than assumed", true},
+     "the {} contact is softer or stiffer than assumed"},
     {"interface_compliance", "interface", "interfaces[i].contact_stiffness (body-on-body interface)",
-     "the joint {} is more compliant (or stiffer) than assumed, e.g. a mortar or shim layer", true},
+     "the joint {} is more compliant (or stiffer) than assumed, e.g. a mortar or shim layer"},
     {"static_kinetic_friction", "interface", "interfaces[i].mu_s, mu_k (mu_k = r mu_s, friction_decay 0)",
-     "sliding friction at {} drops below the friction that holds the body at rest (mu_k < mu_s)", true},
+     "sliding friction at {} drops below the friction that holds the body at rest (mu_k < mu_s)"},
     {"velocity_weakening", "interface", "interfaces[i].mu_s, mu_k, friction_decay = 5 s/m",
-     "friction at {} weakens gradually as the sliding speed grows", true},
-    {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x", true},
-    {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y", true},
+     "friction at {} weakens gradually as the sliding speed grows"},
+    {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x"},
+    {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y"},
     {"vertical_table_motion", "table", "table_motion.z = the table's x acceleration times c",
-     "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)", true},
-    {"base_not_flat", "body", "bodies[name].base.corner_gaps (the option exists; not yet searched)",
-     "the base of {} is not flat: one corner is short", false},
-    {"edge_inset", "body", "bodies[name].base.edge_inset (the option exists; not yet searched)",
-     "{} rocks on edges inset from its geometric base edges (worn or rounded edges)", false},
-    {"table_pitch", "table", "table_motion.pitch (the option exists; not yet searched)", "the table pitched about y", false},
-    {"table_roll", "table", "table_motion.roll (the option exists; not yet searched)", "the table rolled about x", false},
+     "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)"},
+    {"base_not_flat", "body", "bodies[name].base.corner_gaps: one corner short by |g| (g > 0: the corner named, < 0: its opposite)",
+     "the base of {} is not flat: one corner is short, so it stands on three and rocks across the diagonal"},
+    {"edge_inset", "body", "bodies[name].base.edge_inset",
+     "{} rocks on edges inset from its geometric base edges (worn, rounded or crushed edges: a narrower base)"},
+    {"table_pitch", "table", "table_motion.pitch = the table's x acceleration times c (rad/s^2 per m/s^2)",
+     "the table pitched (turned about y) in step with its horizontal motion (no table rotation was recorded)"},
+    {"table_roll", "table", "table_motion.roll = the table's x acceleration times c (rad/s^2 per m/s^2)",
+     "the table rolled (turned about x) in step with its horizontal motion (no table rotation was recorded)"},
 };
 
 // The interface entry of `document` between lower and upper, created when
@@ -65,6 +67,12 @@ json& interface_entry(json& document, const std::string& lower, const std::strin
     if (f.value("lower", "") == lower && f.value("upper", "") == upper) return f;
   document["interfaces"].push_back({{"lower", lower}, {"upper", upper}});
   return document["interfaces"].back();
+}
+
+// The plain words of catalogue entry `entry` about `subject` (an interface or body, quoted).
+std::string describe(const std::string& entry, const std::string& subject) {
+  const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == entry; });
+  return fmt::format(fmt::runtime(e->description), subject);
 }
 
 json& body_entry(json& document, const std::string& name) {
@@ -109,8 +117,7 @@ void interface_candidates(const json& document, const Scene& scene, const Record
     auto make = [&](const char* entry, const char* unit, double lo, double hi, double nominal, bool log, bool stat) {
       Candidate c;
       c.entry = entry, c.where = where, c.name = fmt::format("{}[{}]", entry, where), c.unit = unit;
-      const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == entry; });
-      c.description = fmt::format(fmt::runtime(e->description), fmt::format("'{}' on '{}'", upper, lower));
+      c.description = describe(entry, fmt::format("'{}' on '{}'", upper, lower));
       c.lower = lo, c.upper = hi, c.nominal = nominal, c.log_scale = log, c.stated = stat;
       return c;
     };
@@ -151,6 +158,66 @@ void interface_candidates(const json& document, const Scene& scene, const Record
   }
 }
 
+// Why `document` with `c` set to `value` is no valid scene (a base option that does not fit
+// the body's base), or "" when it is one.
+std::string invalid_at(const json& document, const Candidate& c, double value) {
+  json trial = document;
+  c.apply(trial, value);
+  try {
+    parse_run_scene(trial);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The base of body `b` (its base faces span `box`): one corner short (base_not_flat, one
+// candidate per diagonal, g > 0 the corner along +d short, g < 0 the opposite one, so that the
+// nominal flat base lies inside the range) and every base edge inset (edge_inset).
+void base_candidates(const BodySpec& b, const json& stated_body, const Eigen::AlignedBox3d& box, const json& document,
+                     std::vector<Candidate>& out, std::vector<std::string>* skipped) {
+  const std::string name = b.name;
+  const json stated = stated_body.value("base", json::object());
+  const double width = std::min(box.sizes().x(), box.sizes().y());
+  std::vector<Candidate> made;
+  if (stated.contains("corner_gaps")) {
+    if (skipped) skipped->push_back(fmt::format("base_not_flat of '{}': the nominal states its corner gaps", name));
+  } else {
+    for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1)}) {
+      Candidate c;
+      c.entry = "base_not_flat", c.where = name, c.unit = "m";
+      const std::string corner = fmt::format("+x{}y", d.y() > 0 ? "+" : "-");
+      const std::string opposite = fmt::format("-x{}y", d.y() > 0 ? "-" : "+");
+      c.name = fmt::format("base_not_flat[{}:{}]", name, corner);
+      c.description = describe(c.entry, fmt::format("'{}'", name)) +
+                      fmt::format(" (the {} corner for a positive gap, the {} corner for a negative one)", corner, opposite);
+      // +-5 % of the base width: a chipped or crushed corner, a missing shim (2 cm under a 40 cm
+      // block); a larger gap would show as a visible wobble at rest.
+      c.lower = -0.05 * width, c.upper = 0.05 * width, c.nominal = 0;
+      c.apply = [name, d](json& doc, double g) {
+        const Eigen::Vector2d short_corner = g >= 0 ? d : Eigen::Vector2d(-d);
+        body_entry(doc, name)["base"]["corner_gaps"] =
+            json::array({{{"corner", {short_corner.x(), short_corner.y()}}, {"gap", std::abs(g)}}});
+      };
+      made.push_back(c);
+    }
+  }
+  Candidate inset;
+  inset.entry = "edge_inset", inset.where = name, inset.unit = "m", inset.name = fmt::format("edge_inset[{}]", name);
+  inset.description = describe(inset.entry, fmt::format("'{}'", name));
+  // Up to half the base half-width: the rocking lever arm halved by badly crushed edges.
+  inset.lower = 0, inset.upper = 0.25 * width, inset.nominal = stated.value("edge_inset", 0.0);
+  inset.stated = stated.contains("edge_inset");
+  inset.at_boundary = inset.nominal <= 0;  // an inset cannot be negative: the flat base is the bound
+  inset.apply = [name](json& doc, double v) { body_entry(doc, name)["base"]["edge_inset"] = v; };
+  made.push_back(inset);
+  for (Candidate& c : made) {
+    const std::string why = invalid_at(document, c, c.upper);
+    if (why.empty()) out.push_back(std::move(c));
+    else if (skipped) skipped->push_back(fmt::format("{}: {}", c.name, why));
+  }
+}
+
 void body_candidates(const Scene& scene, const json& document, const Recording& recording, std::vector<Candidate>& out,
                      std::vector<std::string>* skipped) {
   for (const BodySpec& b : scene.bodies) {
@@ -168,8 +235,7 @@ void body_candidates(const Scene& scene, const json& document, const Recording& 
       Candidate c;
       c.entry = axis == 0 ? "com_offset_x" : "com_offset_y";
       c.where = name, c.name = fmt::format("{}[{}]", c.entry, name), c.unit = "m";
-      const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == c.entry; });
-      c.description = fmt::format(fmt::runtime(e->description), fmt::format("'{}'", name));
+      c.description = describe(c.entry, fmt::format("'{}'", name));
       // A quarter of the base half-width either way: beyond that the body leans visibly at rest.
       const double half = 0.5 * (box.max()[axis] - box.min()[axis]), centre = 0.5 * (box.max()[axis] + box.min()[axis]);
       c.nominal = b.com[axis], c.lower = centre - 0.25 * half, c.upper = centre + 0.25 * half;
@@ -182,7 +248,25 @@ void body_candidates(const Scene& scene, const json& document, const Recording& 
       };
       out.push_back(c);
     }
+    base_candidates(b, stated_body, box, document, out, skipped);
   }
+}
+
+// A table axis the model was not given, driven in step with the recorded x acceleration: its
+// acceleration is c a_x (actuator crosstalk, or a table that tilts as it travels), c in
+// [-range, range].
+Candidate table_axis_candidate(const std::string& entry, const std::string& axis, const std::string& units,
+                               const std::string& unit, double range) {
+  Candidate c;
+  c.entry = entry, c.where = "table", c.name = entry, c.unit = unit;
+  c.description = describe(entry, "the table");
+  c.lower = -range, c.upper = range, c.nominal = 0;
+  c.apply = [axis, units](json& d, double v) {
+    json a = d["table_motion"]["x"];
+    a["column"] = "ax", a["scale"] = v, a["units"] = units;
+    d["table_motion"][axis] = a;
+  };
+  return c;
 }
 
 // ------------------------------------------------------------------ features
@@ -199,22 +283,19 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
   std::vector<Candidate> out;
   interface_candidates(document, scene, recording, out, skipped);
   body_candidates(scene, document, recording, out, skipped);
-  if (recording.table_channel('a', 'x') && !recording.find("table_az")) {
-    Candidate c;
-    c.entry = "vertical_table_motion", c.where = "table", c.name = "vertical_table_motion", c.unit = "az / ax";
-    c.description = kCatalogue[7].description;
-    c.lower = -0.5, c.upper = 0.5, c.nominal = 0;
-    c.apply = [](json& d, double v) {
-      json z = d["table_motion"]["x"];
-      z["column"] = "ax", z["scale"] = v;
-      d["table_motion"]["z"] = z;
-    };
-    out.push_back(c);
-  } else if (skipped) {
-    skipped->push_back("vertical table motion: needs a recorded table_ax and no recorded table_az");
+  // Table motion the model was not given, in step with the recorded x acceleration: vertical
+  // (up to half of it: strong actuator crosstalk) and tilts (0.1 rad/s^2 per m/s^2: 0.1 m of
+  // travel tilts the table by 10 mrad, far beyond a servo-controlled table's few mrad).
+  if (!recording.table_channel('a', 'x')) {
+    if (skipped) skipped->push_back("table motion candidates: need a recorded table_ax to drive them");
+    return out;
   }
-  for (const CatalogueEntry& e : kCatalogue)
-    if (!e.available && skipped) skipped->push_back(fmt::format("{}: its model option exists but it is not yet searched (docs/diagnose.md)", e.name));
+  if (!recording.find("table_az"))
+    out.push_back(table_axis_candidate("vertical_table_motion", "z", "m/s^2", "az / ax", 0.5));
+  else if (skipped)
+    skipped->push_back("vertical table motion: table_az was recorded (the model replays it)");
+  out.push_back(table_axis_candidate("table_pitch", "pitch", "rad/s^2", "rad/m", 0.1));
+  out.push_back(table_axis_candidate("table_roll", "roll", "rad/s^2", "rad/m", 0.1));
   return out;
 }
 
@@ -908,6 +989,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       f.candidate.correct(measured[f.candidate.recording], f.value);
       target = make_target(measured, {ensemble_runs}, search, held);
       d.measurement.push_back(sensor_issue(f, alike));
+      d.measurement.back().round = round + 1;
       sensor_candidates.erase(sensor_candidates.begin() + (best - candidates.size()));
       continue;
     }
@@ -920,6 +1002,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       Effect e;
       e.fit = f;
       e.candidates_tried = tried;
+      e.round = round + 1;
       e.indistinguishable = alike;
       e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
       const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
@@ -1032,12 +1115,12 @@ json diagnosis_json(const Diagnosis& d) {
                                          {"delay_significant", m.delay_significant}, {"gain", m.gain},
                                          {"gain_sd", m.gain_sd}, {"gain_significant", m.gain_significant},
                                          {"bias", m.bias}, {"drift", m.drift}, {"drift_significant", m.drift_significant},
-                                         {"correlation", m.correlation}});
+                                         {"correlation", m.correlation}, {"round", m.round}});
   out["effects"] = out["recalibrated"] = json::array();
   for (const Effect& e : d.effects) {
     json j = fitted(e.fit);
     j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable},
-              {"candidates_tried", e.candidates_tried}});
+              {"candidates_tried", e.candidates_tried}, {"round", e.round}});
     out[e.verdict == "recalibrated" ? "recalibrated" : "effects"].push_back(j);
   }
   out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();

@@ -27,7 +27,6 @@ struct CatalogueEntry {
   std::string scope;         // "interface", "body" or "table": one candidate per interface, per body, or one
   std::string fields;        // the scenario fields that represent the parameter
   std::string description;   // plain words, {} = the interface or body
-  bool available = true;     // false: waits for a scenario option (docs/diagnose.md)
 };
 const std::vector<CatalogueEntry>& catalogue();
 
@@ -81,6 +80,7 @@ struct MeasurementIssue {
   double correlation = 0;
   bool delay_suspected = false, gain_suspected = false;  // worth a candidate
   bool delay_significant = false, gain_significant = false, drift_significant = false;  // accepted
+  int round = 0;              // the search round that accepted it (0: drift, accepted before the search)
   std::string text;           // plain words
 };
 
@@ -122,6 +122,7 @@ struct Effect {               // an accepted candidate
   bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
   std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
   int candidates_tried = 0;   // counted in the Holm correction
+  int round = 0;              // the search round that accepted it (1 = first)
 };
 
 struct FeatureRow {           // one event feature, recorded and simulated
