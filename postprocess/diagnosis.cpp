@@ -14,6 +14,7 @@
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
+#include "freestand/units.h"
 #include "results_analysis.h"
 #include "synthetic_recording.h"
 
@@ -30,8 +31,9 @@ const double kMinDuration = 0.5;   // s: a shorter record holds too few events t
 const int kMinSamples = 50;
 const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
                                       // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
-const double kFarOff = 3;
-const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop          // a stated value moved by more than this factor is flagged
+const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
+const int kGridRefinements = 3;   // contact grids tried beyond the model's (per_edge up to 8)
+const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
 
 // ------------------------------------------------------------------ catalogue
 
@@ -56,6 +58,8 @@ const std::vector<CatalogueEntry> kCatalogue = {
      "{} rocks on edges inset from its geometric base edges (worn, rounded or crushed edges: a narrower base)"},
     {"table_pitch", "table", "table_motion.pitch = the table's x acceleration times c (rad/s^2 per m/s^2)",
      "the table pitched (turned about y) in step with its horizontal motion (no table rotation was recorded)"},
+    {"table_gain", "table", "table_motion.x.scale = g (the recorded table acceleration replayed times g)",
+     "the recorded table acceleration reads high or low against what the table did (accelerometer gain)"},
     {"table_roll", "table", "table_motion.roll = the table's x acceleration times c (rad/s^2 per m/s^2)",
      "the table rolled (turned about x) in step with its horizontal motion (no table rotation was recorded)"},
 };
@@ -252,20 +256,48 @@ void body_candidates(const Scene& scene, const json& document, const Recording& 
   }
 }
 
+// The table's x record as another axis driven by c times its acceleration: the same record
+// scaled by c (times its own scale, and in SI for a rotational axis, whose unit is rad/s^2).
+json driven_by_x(const json& document, const std::string& axis, double c) {
+  const json x = document.contains("table_motion") ? document["table_motion"].value("x", json()) : json();
+  if (!x.is_object() || !x.contains("record"))
+    throw InputError(fmt::format("diagnose: table_motion.{} is driven by table_motion.x, which states no record", axis));
+  if (x.contains("pga"))
+    throw InputError(fmt::format("diagnose: table_motion.{} is driven by table_motion.x: give x a 'scale', not a 'pga'", axis));
+  json a = x;
+  double scale = c * x.value("scale", 1.0);
+  if (axis == "pitch" || axis == "roll") {
+    const auto unit = find_motion_unit(x.value("units", ""));
+    if (!unit || unit->is_angular)
+      throw InputError(fmt::format("diagnose: table_motion.x has no translational units to drive {} with", axis));
+    a["units"] = unit->is_velocity ? "rad/s" : "rad/s^2";
+    scale *= unit->to_si;
+  }
+  a["scale"] = scale;
+  return a;
+}
+
 // A table axis the model was not given, driven in step with the recorded x acceleration: its
 // acceleration is c a_x (actuator crosstalk, or a table that tilts as it travels), c in
 // [-range, range].
-Candidate table_axis_candidate(const std::string& entry, const std::string& axis, const std::string& units,
-                               const std::string& unit, double range) {
+Candidate table_axis_candidate(const std::string& entry, const std::string& axis, const std::string& unit, double range) {
   Candidate c;
   c.entry = entry, c.where = "table", c.name = entry, c.unit = unit;
   c.description = describe(entry, "the table");
   c.lower = -range, c.upper = range, c.nominal = 0;
-  c.apply = [axis, units](json& d, double v) {
-    json a = d["table_motion"]["x"];
-    a["column"] = "ax", a["scale"] = v, a["units"] = units;
-    d["table_motion"][axis] = a;
-  };
+  c.apply = [axis](json& d, double v) { d["table_motion"][axis] = driven_by_x(d, axis, v); };
+  return c;
+}
+
+// The recorded table acceleration, which the model replays, off by a gain: a measurement
+// issue that only a simulation can fit (it changes the model's input). The range is the
+// sensor gains' (0.8 .. 1.25).
+Candidate table_gain_candidate() {
+  Candidate c;
+  c.entry = "table_gain", c.where = "table_ax", c.name = "table_gain", c.unit = "";
+  c.description = describe(c.entry, "");
+  c.lower = 0.8, c.upper = 1.25, c.nominal = 1, c.measurement = true;
+  c.apply = [](json& d, double g) { d["table_motion"]["x"]["scale"] = g; };
   return c;
 }
 
@@ -290,12 +322,13 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
     if (skipped) skipped->push_back("table motion candidates: need a recorded table_ax to drive them");
     return out;
   }
+  out.push_back(table_gain_candidate());
   if (!recording.find("table_az"))
-    out.push_back(table_axis_candidate("vertical_table_motion", "z", "m/s^2", "az / ax", 0.5));
+    out.push_back(table_axis_candidate("vertical_table_motion", "z", "az / ax", 0.5));
   else if (skipped)
     skipped->push_back("vertical table motion: table_az was recorded (the model replays it)");
-  out.push_back(table_axis_candidate("table_pitch", "pitch", "rad/s^2", "rad/m", 0.1));
-  out.push_back(table_axis_candidate("table_roll", "roll", "rad/s^2", "rad/m", 0.1));
+  out.push_back(table_axis_candidate("table_pitch", "pitch", "rad/m", 0.1));
+  out.push_back(table_axis_candidate("table_roll", "roll", "rad/m", 0.1));
   return out;
 }
 
@@ -580,14 +613,23 @@ struct Target {
   std::map<std::string, double> sd;
   std::set<std::string> held_out;
 
+  // Feature `name` of a simulation, or its fallback when the simulation lacks the event.
+  static double value_in(const Features& sim, const std::string& name, const FeatureValue& f) {
+    const auto s = sim.find(name);
+    return s == sim.end() ? f.fallback : s->second.value;
+  }
   double chi2(const Features& sim, bool held) const {
     double sum = 0;
     for (const auto& [name, f] : recorded) {
       if (held_out.count(name) != static_cast<std::size_t>(held)) continue;
-      const auto s = sim.find(name);
-      const double v = s == sim.end() ? f.fallback : s->second.value;
-      sum += std::pow((v - f.value) / sd.at(name), 2);
+      sum += std::pow((value_in(sim, name, f) - f.value) / sd.at(name), 2);
     }
+    return sum;
+  }
+  // How far two simulations lie apart, in the units of the comparison (every recorded feature).
+  double distance(const Features& a, const Features& b) const {
+    double sum = 0;
+    for (const auto& [name, f] : recorded) sum += std::pow((value_in(a, name, f) - value_in(b, name, f)) / sd.at(name), 2);
     return sum;
   }
   int count(bool held) const {
@@ -598,8 +640,7 @@ struct Target {
   std::vector<Mismatch> mismatches(const Features& sim, double threshold) const {
     std::vector<Mismatch> out;
     for (const auto& [name, f] : recorded) {
-      const auto s = sim.find(name);
-      const double v = s == sim.end() ? f.fallback : s->second.value;
+      const double v = value_in(sim, name, f);
       const double z = (f.value - v) / sd.at(name);
       if (std::abs(z) > threshold) out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value, v, z});
     }
@@ -796,10 +837,28 @@ std::string event_words(const Mismatch& m) {
   return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
 }
 
+// The contact node grid of every body not in `stated` refined once: the surface layout (nodes
+// inside the faces too, a distributed contact) with twice the segments per edge (at least 2).
+// Returns the new grid, null when every body states its own.
+json refine_grid(Model& model, const std::set<std::string>& stated) {
+  json grid;
+  for (json& document : model)
+    for (json& b : document["bodies"]) {
+      if (stated.count(b.value("name", ""))) continue;
+      json nodes = b.value("nodes", json::object());
+      nodes["per_edge"] = std::max(2, 2 * nodes.value("per_edge", 1));
+      nodes["layout"] = "surface";
+      b["nodes"] = nodes;
+      if (grid.is_null()) grid = nodes;
+    }
+  return grid;
+}
+
 // The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
 // (where the body states its orientation) and spin perturbed by the angle noise, each with
 // its own noise seed.
-std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members) {
+std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members,
+                               double table_gain_sd) {
   std::vector<Job> jobs;
   for (std::size_t r = 0; r < recordings.size(); ++r) jobs.push_back({base[r], r, 1});
   std::mt19937 rng(12345);
@@ -818,6 +877,12 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
           const Eigen::Quaterniond turned = tilt * Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
           b["orientation"] = {turned.w(), turned.x(), turned.y(), turned.z()};
         }
+      }
+      // The replayed table acceleration is a measured channel: its gain is known only to the
+      // accelerometer's calibration uncertainty, and rocking near its threshold feels every percent.
+      if (doc.contains("table_motion") && doc["table_motion"].contains("x")) {
+        json& x = doc["table_motion"]["x"];
+        x["scale"] = x.value("scale", 1.0) * (1 + table_gain_sd * normal(rng));
       }
       jobs.push_back({doc, r, static_cast<unsigned>(100 + e)});
     }
@@ -867,10 +932,41 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle noise,
   // each with its own noise realisation.
   std::vector<Recording> nominal_runs(recordings.size());  // noise-free: the measurement check compares with them
-  std::vector<Features> ensemble_runs =
-      search.run(ensemble_jobs(base, recordings, options.ensemble), "nominal and ensemble", &nominal_runs);
+  std::vector<Features> ensemble_runs;
   Features nominal;
-  for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+  auto run_ensemble = [&](const std::string& stage) {
+    ensemble_runs = search.run(ensemble_jobs(base, recordings, options.ensemble, options.table_gain_sd), stage, &nominal_runs);
+    nominal.clear();
+    for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+  };
+  run_ensemble("nominal and ensemble");
+
+  // Numerics before physics: a contact grid too coarse for the motion would pass its
+  // discretisation error off as missing physics. The nominal runs on a refined grid (same noise
+  // seed); when its features move beyond the 99 % quantile of chi2 in units of the ensemble
+  // scatter, the refined grid becomes the model (its ensemble rerun) and is checked in turn.
+  // A grid the model states is its author's choice (layout "vertices": Housner's corner contact),
+  // not a discretisation, and is kept.
+  std::set<std::string> stated_grid;
+  for (const json& b : base.front()["bodies"])
+    if (b.contains("nodes")) stated_grid.insert(b.value("name", ""));
+  json grid;
+  for (int refinement = 0; refinement < kGridRefinements; ++refinement) {
+    Model finer = base;
+    GridCheck check;
+    const json finer_grid = refine_grid(finer, stated_grid);
+    if (finer_grid.is_null()) break;
+    check.grid = finer_grid.dump();
+    const Features refined = search.evaluate({finer}, "numerics: refined contact grid").front();
+    const Target scale = make_target(recordings, {ensemble_runs}, search, HeldOutRule{});
+    check.distance = scale.distance(nominal, refined);
+    check.limit = chi2_quantile_99(static_cast<int>(scale.recorded.size()));
+    check.adopted = check.distance > check.limit;
+    d.grid_checks.push_back(check);
+    if (!check.adopted) break;
+    base = finer, grid = finer_grid;
+    run_ensemble(fmt::format("nominal and ensemble, contact grid {}", check.grid));
+  }
 
   // 2. Measurement: drift at rest removed at once; suspected delays and gains become candidates.
   std::vector<Recording> measured = recordings;
@@ -961,7 +1057,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       // model): an ensemble there, the variances of both ensembles averaged.
       if (i < candidates.size()) {
         candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
-                                                  options.ensemble),
+                                                  options.ensemble, options.table_gain_sd),
                                     fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
         // The statistics are means over the perturbed members, not the seed-1 run the value was
         // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
@@ -1004,7 +1100,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
       e.candidates_tried = tried;
       e.round = round + 1;
       e.indistinguishable = alike;
-      e.verdict = f.candidate.stated ? "recalibrated" : "missing physics";
+      e.verdict = f.candidate.measurement ? "measurement" : f.candidate.stated ? "recalibrated" : "missing physics";
       const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
       e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
       d.effects.push_back(e);
@@ -1034,7 +1130,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
   d.z_threshold = options.z_threshold;
   d.simulated_nominal = nominal_runs;
   d.simulated_final = nominal_runs;
-  if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0), "improved model", &d.simulated_final);
+  if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0, 0), "improved model", &d.simulated_final);
   d.unexplained = target.mismatches(current, options.z_threshold);
   d.simulations += search.simulations;
 
@@ -1042,10 +1138,24 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
   d.improved = scenario;
   for (const char* key : {"bodies", "interfaces", "gravity"})
     if (!d.improved.contains(key) && recordings.front().nominal.contains(key)) d.improved[key] = recordings.front().nominal[key];
-  for (const Effect& e : d.effects) e.fit.candidate.apply(d.improved, e.fit.value);
+  if (!grid.is_null())
+    for (json& b : d.improved["bodies"])
+      if (!stated_grid.count(b.value("name", ""))) b["nodes"] = grid;
+  for (const Effect& e : d.effects) {
+    if (e.verdict == "measurement") continue;  // corrects the replayed recording, not the model
+    try {
+      e.fit.candidate.apply(d.improved, e.fit.value);
+    } catch (const InputError& error) {
+      d.notes.push_back(fmt::format("{} is not written into the improved scenario: {}", e.fit.candidate.name, error.what()));
+    }
+  }
 
   // 5. The verdict in plain words.
   std::string v;
+  for (const GridCheck& c : d.grid_checks)
+    if (c.adopted)
+      v += fmt::format("Numerics: the model's contact grid was not converged (refined to {} the features moved by "
+                       "{:.0f} against a 99 % limit of {:.0f}); the refined grid is used.\n", c.grid, c.distance, c.limit);
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
     const Mismatch& first = d.mismatches.front();
@@ -1062,7 +1172,9 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& recording
                                                     : fmt::format("+- {:.2g}", f.standard_error);
     v += fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f}, p = {:.2g} after {} candidates, "
                      "held-out improvement {:.1f}.{}{}\n",
-                     e.verdict == "recalibrated" ? "Recalibrated" : "Missing physics", f.candidate.description,
+                     e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
+                                                                                      : "Missing physics",
+                     f.candidate.description,
                      f.candidate.name, format_value(f.candidate, f.value), err, format_value(f.candidate, f.candidate.nominal),
                      f.chi2 + f.delta, f.chi2, f.p_value, e.candidates_tried, f.held_out_delta,
                      e.far_off ? " FAR from the stated value: check the nominal." : "",
@@ -1109,19 +1221,26 @@ json diagnosis_json(const Diagnosis& d) {
   json out = {{"verdict", d.verdict}, {"feature_count", d.feature_count}, {"chi2_nominal", d.chi2_nominal},
               {"chi2_final", d.chi2_final}, {"chi2_noise_limit_99", d.chi2_noise_limit},
               {"simulations", d.simulations}, {"notes", d.notes}, {"improved_scenario", d.improved}};
+  out["grid_checks"] = json::array();
+  for (const GridCheck& c : d.grid_checks)
+    out["grid_checks"].push_back({{"grid", json::parse(c.grid)}, {"distance", c.distance}, {"limit", c.limit},
+                                  {"adopted", c.adopted}});
   out["measurement_issues"] = json::array();
   for (const MeasurementIssue& m : d.measurement)
     out["measurement_issues"].push_back({{"channel", m.channel}, {"text", m.text}, {"delay", m.delay},
                                          {"delay_significant", m.delay_significant}, {"gain", m.gain},
                                          {"gain_sd", m.gain_sd}, {"gain_significant", m.gain_significant},
                                          {"bias", m.bias}, {"drift", m.drift}, {"drift_significant", m.drift_significant},
-                                         {"correlation", m.correlation}, {"round", m.round}});
+                                         {"correlation", m.correlation}, {"round", m.round},
+                                         {"catalogue", m.delay_significant ? "sensor_delay"
+                                                       : m.gain_significant ? "sensor_gain" : "sensor_drift"}});
   out["effects"] = out["recalibrated"] = json::array();
   for (const Effect& e : d.effects) {
     json j = fitted(e.fit);
     j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable},
               {"candidates_tried", e.candidates_tried}, {"round", e.round}});
-    out[e.verdict == "recalibrated" ? "recalibrated" : "effects"].push_back(j);
+    if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
+    out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);
   }
   out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();
   for (const Mismatch& m : d.mismatches) out["mismatches"].push_back(mismatch(m));

@@ -41,6 +41,8 @@ struct Candidate {
   bool log_scale = false;
   bool stated = false;       // the nominal states it: a fit is a recalibration, else missing physics
   bool at_boundary = false;  // the nominal value is a bound of the admissible range (LRT boundary correction)
+  bool measurement = false;  // a measurement issue fitted by simulation (the replayed table): reported as
+                             // such and never written into the improved scenario
   std::function<void(nlohmann::json&, double)> apply;  // sets the value in a scenario document
   // Measurement candidates (sensor delay, gain) change the recording, not the model:
   std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
@@ -87,6 +89,8 @@ struct MeasurementIssue {
 struct Options {
   int jobs = 2;               // simulations at a time
   int ensemble = 6;           // perturbed runs that measure the feature scatter
+  double table_gain_sd = 0.02;  // relative s.d. of the recorded table acceleration's gain (accelerometer
+                               // calibration, 1-2 %): each ensemble member replays the table with its own gain
   int profile_points = 4;     // points of each candidate's quick profile (around the nominal)
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
@@ -118,7 +122,7 @@ struct FittedCandidate {
 
 struct Effect {               // an accepted candidate
   FittedCandidate fit;
-  std::string verdict;        // "recalibrated" or "missing physics"
+  std::string verdict;        // "recalibrated", "missing physics" or "measurement"
   bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
   std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
   int candidates_tried = 0;   // counted in the Holm correction
@@ -131,7 +135,15 @@ struct FeatureRow {           // one event feature, recorded and simulated
   bool held_out = false;
 };
 
+struct GridCheck {            // the model's contact grid against a refined one (numerics before physics)
+  std::string grid;           // the refined grid's nodes (JSON)
+  double distance = 0;        // sum of ((refined - model) / s)^2 over the features
+  double limit = 0;           // 99 % quantile of chi2(features): beyond it the model was not converged
+  bool adopted = false;       // the refined grid became the model
+};
+
 struct Diagnosis {
+  std::vector<GridCheck> grid_checks;
   std::vector<MeasurementIssue> measurement;
   std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order
   std::vector<ChannelDivergence> divergence;
