@@ -28,7 +28,6 @@ struct CatalogueEntry {
   std::string scope;         // "interface", "body" or "table": one candidate per interface, per body, or one
   std::string fields;        // the scenario fields that represent the parameter
   std::string description;   // plain words, {} = the interface or body
-  bool available = true;     // false: waits for a scenario option (docs/diagnose.md)
 };
 const std::vector<CatalogueEntry>& catalogue();
 
@@ -43,6 +42,8 @@ struct Candidate {
   bool log_scale = false;
   bool stated = false;       // the nominal states it: a fit is a recalibration, else missing physics
   bool at_boundary = false;  // the nominal value is a bound of the admissible range (LRT boundary correction)
+  bool measurement = false;  // a measurement issue fitted by simulation (the replayed table): reported as
+                             // such and never written into the improved scenario
   std::function<void(nlohmann::json&, double)> apply;  // sets the value in a scenario document
   // Measurement candidates (sensor delay, gain) change the recording, not the model:
   std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
@@ -82,12 +83,15 @@ struct MeasurementIssue {
   double correlation = 0;
   bool delay_suspected = false, gain_suspected = false;  // worth a candidate
   bool delay_significant = false, gain_significant = false, drift_significant = false;  // accepted
+  int round = 0;              // the search round that accepted it (0: drift, accepted before the search)
   std::string text;           // plain words
 };
 
 struct Options {
   int jobs = 2;               // simulations at a time
   int ensemble = 6;           // perturbed runs that measure the feature scatter
+  double table_gain_sd = 0.02;  // relative s.d. of the recorded table acceleration's gain (accelerometer
+                               // calibration, 1-2 %): each ensemble member replays the table with its own gain
   int profile_points = 4;     // points of each candidate's quick profile (around the nominal)
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
@@ -120,10 +124,11 @@ struct FittedCandidate {
 
 struct Effect {               // an accepted candidate
   FittedCandidate fit;
-  std::string verdict;        // "recalibrated" or "missing physics"
+  std::string verdict;        // "recalibrated", "missing physics" or "measurement"
   bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
   std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
   int candidates_tried = 0;   // counted in the Holm correction
+  int round = 0;              // the search round that accepted it (1 = first)
 };
 
 struct FeatureRow {           // one event feature, recorded and simulated
@@ -132,7 +137,15 @@ struct FeatureRow {           // one event feature, recorded and simulated
   bool held_out = false;
 };
 
+struct GridCheck {            // the model's contact grid against a refined one (numerics before physics)
+  std::string grid;           // the refined grid's nodes (JSON)
+  double distance = 0;        // sum of ((refined - model) / s)^2 over the features
+  double limit = 0;           // 99 % quantile of chi2(features): beyond it the model was not converged
+  bool adopted = false;       // the refined grid became the model
+};
+
 struct Diagnosis {
+  std::vector<GridCheck> grid_checks;
   std::vector<MeasurementIssue> measurement;
   std::vector<TableTracking> table;            // recorded table against the scenario's command, where it differs
   std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order

@@ -126,6 +126,10 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--ensemble", o->options.ensemble, "perturbed runs that measure the feature scatter")
       ->capture_default_str()
       ->check(CLI::Range(2, 50));
+  sub->add_option("--table-gain-sd", o->options.table_gain_sd,
+                  "relative s.d. of the recorded table acceleration's gain, drawn per ensemble member")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.2));
   sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
       ->capture_default_str()
       ->check(CLI::Range(2, 16));

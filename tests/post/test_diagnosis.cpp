@@ -111,6 +111,42 @@ TEST(Diagnosis, NamesAndRecoversCentreOfMassOffset) {
   EXPECT_NEAR(d.effects.front().fit.value, 0.012, 0.003);
 }
 
+// Rounded edges: the block rocks on edges 15 mm inside its 100 mm half-width, so it rocks at a
+// lower slenderness (faster, from a lower threshold) on both sides alike. Tolerance 3 mm: the last
+// refinement's spacing is 0.6 mm (a bracket of 0.15 of the 50 mm range cut in fifths twice); the
+// rest is the trade-off with restitution, which also changes the decay, allowed as for the COM.
+TEST(Diagnosis, NamesAndRecoversEdgeInset) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["bodies"][0]["base"] = {{"edge_inset", 0.015}};
+  Recording recording = rocking_recording(truth, dir, 14);
+  for (json& b : recording.nominal["bodies"]) b.erase("base");  // concealed: the experimenter believes the edges sharp
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, fast_options(dir));
+  std::cerr << d.verdict;
+  ASSERT_FALSE(d.effects.empty());
+  EXPECT_EQ(d.effects.front().fit.candidate.entry, "edge_inset");
+  EXPECT_EQ(d.effects.front().verdict, "missing physics");
+  EXPECT_NEAR(d.effects.front().fit.value, 0.015, 0.003);
+  EXPECT_NEAR(d.improved["bodies"][0]["base"]["edge_inset"].get<double>(), d.effects.front().fit.value, 1e-12);
+}
+
+// One corner short: released onto its +x edge, the block stands on the +x -y corner alone
+// (the +x +y one is 3 mm short), so it also rolls about x, which no other candidate does with
+// a symmetric base. Tolerance 1 mm: a third of the gap; the last refinement's spacing is 0.1 mm
+// (0.15 of the +-10 mm range cut in fifths twice), the rest is the trade-off with the COM in y.
+TEST(Diagnosis, NamesAndRecoversShortCorner) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["bodies"][0]["base"] = {{"corner_gaps", {{{"corner", {1.0, 1.0}}, {"gap", 0.003}}}}};
+  Recording recording = rocking_recording(truth, dir, 15);
+  for (json& b : recording.nominal["bodies"]) b.erase("base");
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, fast_options(dir));
+  std::cerr << d.verdict;
+  ASSERT_FALSE(d.effects.empty());
+  EXPECT_EQ(d.effects.front().fit.candidate.name, "base_not_flat[block:+x+y]");
+  EXPECT_NEAR(d.effects.front().fit.value, 0.003, 0.001);
+}
+
 // The model is the truth: nothing significant may be found.
 TEST(Diagnosis, NoEffectFindsNoMissingPhysics) {
   test::TempDir dir;
