@@ -373,9 +373,13 @@ TEST(VtkSeries, RenderScriptDrawsBodiesColouredByRocking) {
   scene.write(dir);
   const fs::path png = dir / "frame.png", log = dir / "render.log";
   const std::string xvfb = FREESTAND_XVFB_RUN;
-  // Debian's ParaView renders through GLX: without xvfb-run it needs a display.
-  const std::string runner = xvfb.empty() ? fmt::format("'{}' --force-offscreen-rendering", pvpython)
-                                          : fmt::format("'{}' -a '{}'", xvfb, pvpython);
+  // Debian's ParaView renders through GLX: without xvfb-run it needs a display. xvfb-run -a
+  // searches up from one display number; two searches from the same number at once can both
+  // take it (one Xvfb then fails, and its client meets the other's server: "bad X server
+  // connection"), so each process starts its search elsewhere.
+  const std::string runner =
+      xvfb.empty() ? fmt::format("'{}' --force-offscreen-rendering", pvpython)
+                   : fmt::format("'{}' -a -n {} '{}'", xvfb, 100 + getpid() % 4000, pvpython);
   const std::string command =
       fmt::format("{} '{}/postprocess/render_frame.py' '{}' -o '{}' --size 480 320 > '{}' 2>&1", runner,
                   FREESTAND_SOURCE_DIR, dir.string(), png.string(), log.string());
