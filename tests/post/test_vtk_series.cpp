@@ -377,13 +377,21 @@ TEST(VtkSeries, RenderScriptDrawsBodiesColouredByRocking) {
   // searches up from one display number; two searches from the same number at once can both
   // take it (one Xvfb then fails, and its client meets the other's server: "bad X server
   // connection"), so each process starts its search elsewhere.
+  const fs::path xvfb_log = dir / "xvfb.log";
   const std::string runner =
       xvfb.empty() ? fmt::format("'{}' --force-offscreen-rendering", pvpython)
-                   : fmt::format("'{}' -a -n {} '{}'", xvfb, 100 + getpid() % 4000, pvpython);
+                   : fmt::format("'{}' -a -n {} -e '{}' '{}'", xvfb, 100 + getpid() % 4000, xvfb_log.string(), pvpython);
   const std::string command =
       fmt::format("{} '{}/postprocess/render_frame.py' '{}' -o '{}' --size 480 320 > '{}' 2>&1", runner,
                   FREESTAND_SOURCE_DIR, dir.string(), png.string(), log.string());
-  ASSERT_EQ(std::system(command.c_str()), 0) << command << "\n" << slurp(log);
+  // The X server itself, not the script, sometimes fails under a loaded parallel ctest ("bad X
+  // server connection" before anything is drawn; rerun alone it passes): that, and only that,
+  // is tried again, at most twice.
+  int status = std::system(command.c_str());
+  for (int attempt = 0; attempt < 2 && status != 0 && slurp(log).find("bad X server connection") != std::string::npos;
+       ++attempt)
+    status = std::system(command.c_str());
+  ASSERT_EQ(status, 0) << command << "\n" << slurp(log) << "\nXvfb: " << slurp(xvfb_log);
 
   vtkNew<vtkPNGReader> reader;
   reader->SetFileName(png.c_str());
