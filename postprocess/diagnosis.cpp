@@ -1,11 +1,15 @@
 #include "diagnosis.h"
 
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 #include <stdlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -37,6 +41,8 @@ const double kIndistinguishable = 2;  // chi2 difference below which two fits ar
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kGridRefinements = 3;    // contact grids tried beyond the model's (per_edge up to 8)
 const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
+const double kInfinity = std::numeric_limits<double>::infinity();
+const double kMonteCarloBound = 2;  // a chi2 drop is tested at its lower bound: drop - 2 Monte Carlo s.e.
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ catalogue
@@ -596,6 +602,16 @@ std::vector<Candidate> measurement_candidates(const MeasurementIssue& m, std::si
 // P(chi2_1 > d).
 double chi2_1_tail(double d) { return d <= 0 ? 1.0 : std::erfc(std::sqrt(d / 2)); }
 
+// The standard-normal z with the tail probability of Student's t with nu degrees of freedom. A
+// feature's s.d. estimated from a few ensemble members makes its ratio t-, not normal-distributed,
+// and a sum of t^2 would count the heavy tails as misfit (E t^2 = nu / (nu - 2): 5/3 for 6 members).
+double t_as_z(double t, double nu) {
+  if (t == 0 || !(nu < 1e6)) return t;
+  const double tail = boost::math::cdf(boost::math::complement(boost::math::students_t(nu), std::abs(t)));
+  if (tail < 1e-300) return t;  // beyond double precision only the size matters
+  return std::copysign(boost::math::quantile(boost::math::complement(boost::math::normal(), tail)), t);
+}
+
 // 99 % quantile of chi2 with n degrees of freedom (Wilson-Hilferty, within 1 % for n >= 5).
 double chi2_quantile_99(int n) {
   const double a = 2.0 / (9.0 * n);
@@ -693,9 +709,13 @@ class Search {
 };
 
 // The recorded features with the s.d. of each (ensemble scatter and floor), and which are held out.
+// Two comparisons: one simulation against the recording (chi2: the profiles, common random
+// numbers) and an ensemble's mean prediction against it (ensemble_chi2: every test and verdict).
 struct Target {
   Features recorded;
-  std::map<std::string, double> sd;
+  std::map<std::string, double> sd;            // sqrt(ensemble variance + floor^2): one run's scatter
+  std::map<std::string, double> ensemble_var;  // pooled variance of the members about their means
+  std::map<std::string, double> dof;           // degrees of freedom of ensemble_var (members - 1, summed)
   std::set<std::string> held_out;
 
   // Feature `name` of a simulation, or its fallback when the simulation lacks the event.
@@ -711,23 +731,53 @@ struct Target {
     }
     return sum;
   }
-  // How far two simulations lie apart, in the units of the comparison (every recorded feature).
-  double distance(const Features& a, const Features& b) const {
+  // The members' mean of feature `name`, member `skip` left out (the jackknife; -1: none).
+  static double ensemble_mean(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                              int skip) {
     double sum = 0;
-    for (const auto& [name, f] : recorded) sum += std::pow((value_in(a, name, f) - value_in(b, name, f)) / sd.at(name), 2);
+    int n = 0;
+    for (int m = 0; m < static_cast<int>(members.size()); ++m)
+      if (m != skip) sum += value_in(members[m], name, f), ++n;
+    return n > 0 ? sum / n : f.fallback;
+  }
+  // The recording's z against the ensemble mean: t = (recorded - mean) / sqrt(var (1 + 1/M) + floor^2)
+  // (a new draw against the mean of M), as a normal z with the Welch-Satterthwaite degrees of
+  // freedom of that variance (the floor is known exactly).
+  double ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                    int skip) const {
+    const int m = static_cast<int>(members.size()) - (skip >= 0);
+    const double scatter = ensemble_var.at(name) * (1 + 1.0 / std::max(1, m));
+    const double variance = scatter + f.floor * f.floor;
+    const double nu = scatter > 0 ? variance * variance / (scatter * scatter / dof.at(name)) : kInfinity;
+    return t_as_z((f.value - ensemble_mean(name, f, members, skip)) / std::sqrt(variance), nu);
+  }
+  // Sum of the squared ensemble z over the fit set (held false), the held-out set (true) or all.
+  double ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held = std::nullopt,
+                       int skip = -1) const {
+    double sum = 0;
+    for (const auto& [name, f] : recorded)
+      if (!held || held_out.count(name) == static_cast<std::size_t>(*held))
+        sum += std::pow(ensemble_z(name, f, members, skip), 2);
     return sum;
+  }
+  // The same scatter with a simulation in the recording's place: is it a draw of the ensemble?
+  Target with_recorded(const Features& sim) const {
+    Target t = *this;
+    for (auto& [name, f] : t.recorded) f.value = value_in(sim, name, f);
+    return t;
   }
   int count(bool held) const {
     int n = 0;
     for (const auto& [name, f] : recorded) n += held_out.count(name) == static_cast<std::size_t>(held);
     return n;
   }
-  std::vector<Mismatch> mismatches(const Features& sim, double threshold) const {
+  std::vector<Mismatch> mismatches(const std::vector<Features>& members, double threshold) const {
     std::vector<Mismatch> out;
     for (const auto& [name, f] : recorded) {
-      const double v = value_in(sim, name, f);
-      const double z = (f.value - v) / sd.at(name);
-      if (std::abs(z) > threshold) out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value, v, z});
+      const double z = ensemble_z(name, f, members, -1);
+      if (std::abs(z) > threshold)
+        out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value,
+                       ensemble_mean(name, f, members, -1), z});
     }
     std::sort(out.begin(), out.end(), [](const Mismatch& a, const Mismatch& b) { return a.time < b.time; });
     return out;
@@ -781,14 +831,21 @@ double profile_sd(const std::vector<std::pair<double, double>>& points) {
   return a > 0 ? 1 / std::sqrt(a) : kNaN;
 }
 
-// The test statistics of a fit: chi2 drop, boundary-corrected LRT p-value, BIC difference
-// (one parameter, n fit-set features).
-void score(FittedCandidate& f, double chi2_before, double chi2_at, int n) {
-  f.chi2 = chi2_at;
-  f.delta = chi2_before - chi2_at;
-  const double p_one = chi2_1_tail(f.delta);
+// A chi2 drop and its Monte Carlo standard error (0 when not estimated).
+struct Drop {
+  double value = 0, se = 0;
+};
+
+// The test statistics of a fit: the chi2 drop taken at its lower Monte Carlo bound (drop - 2 s.e.:
+// the ensemble means are estimates, and a drop they could produce by chance is no evidence),
+// boundary-corrected LRT p-value, BIC difference (one parameter, n fit-set features).
+void score(FittedCandidate& f, const Drop& drop, int n) {
+  f.delta = drop.value;
+  f.delta_se = drop.se;
+  const double sure = drop.value - kMonteCarloBound * drop.se;
+  const double p_one = chi2_1_tail(sure);
   f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
-  f.delta_bic = f.delta - std::log(std::max(1, n));
+  f.delta_bic = sure - std::log(std::max(1, n));
 }
 
 // A misfit beyond the noise (chi2 per degree of freedom above 1) widens a profile's s.d. by its
@@ -807,7 +864,8 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
-  score(f, chi2_base, curve[best].second, target.count(false));
+  f.chi2 = curve[best].second;
+  score(f, {chi2_base - f.chi2, 0}, target.count(false));
   const double sd_u = profile_sd(curve) * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
   f.evaluations = static_cast<int>(p.u.size());
@@ -853,27 +911,47 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
     const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
     t.recorded.insert(f.begin(), f.end());
   }
+  double dof = 0;
+  for (const std::vector<Features>& runs : ensembles) dof += std::max<double>(1, runs.size() / recordings.size() - 2);
   for (const auto& [name, f] : t.recorded) {
     double var = 0;
     for (const std::vector<Features>& runs : ensembles)
       var += ensemble_variance(name, f, runs, recordings.size(), search) / ensembles.size();
+    t.ensemble_var[name] = var;
+    t.dof[name] = dof;
     t.sd[name] = std::sqrt(var + f.floor * f.floor);
     if (held(name, f)) t.held_out.insert(name);
   }
   return t;
 }
 
-// Mean chi2 (fit or held-out set) of an ensemble's perturbed members (the runs after the
-// first `recordings` nominal ones, `recordings` runs per member).
-double mean_chi2(const Target& target, const std::vector<Features>& runs, std::size_t recordings, bool held) {
-  double sum = 0;
-  int members = 0;
-  for (std::size_t j = recordings; j + recordings <= runs.size(); j += recordings, ++members) {
+// An ensemble's perturbed members (the runs after the first `recordings` nominal ones), each
+// merged over the recordings.
+std::vector<Features> members_of(const std::vector<Features>& runs, std::size_t recordings) {
+  std::vector<Features> out;
+  for (std::size_t j = recordings; j + recordings <= runs.size(); j += recordings) {
     Features member;
     for (std::size_t r = 0; r < recordings; ++r) member.insert(runs[j + r].begin(), runs[j + r].end());
-    sum += target.chi2(member, held);
+    out.push_back(std::move(member));
   }
-  return members > 0 ? sum / members : 0.0;
+  return out;
+}
+
+// The chi2 drop from ensemble `before` (against target t0) to ensemble `at` (against t1), with
+// its Monte Carlo s.e. from the jackknife over the member pairs (member e of every ensemble has
+// the same perturbation and noise seed, so the pairs share what chaos and noise they can).
+Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
+                   const std::vector<Features>& at, std::optional<bool> held) {
+  Drop d{t0.ensemble_chi2(before, held) - t1.ensemble_chi2(at, held), 0};
+  const int m = static_cast<int>(std::min(before.size(), at.size()));
+  if (m < 3) return d;
+  std::vector<double> left_out;
+  for (int k = 0; k < m; ++k) left_out.push_back(t0.ensemble_chi2(before, held, k) - t1.ensemble_chi2(at, held, k));
+  double mean = 0, sum = 0;
+  for (double x : left_out) mean += x / m;
+  for (double x : left_out) sum += (x - mean) * (x - mean);
+  d.se = std::sqrt((m - 1.0) / m * sum);
+  return d;
 }
 
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
@@ -895,7 +973,8 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
-  score(f, chi2_base, curve[best].second, fit_count);
+  f.chi2 = curve[best].second;
+  score(f, {chi2_base - f.chi2, 0}, fit_count);
   f.standard_error = profile_sd(curve) * birge_ratio(curve[best].second, fit_count) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
@@ -1128,8 +1207,8 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     if (finer_grid.is_null()) break;
     check.grid = finer_grid.dump();
     const Features refined = search.evaluate({finer}, "numerics: refined contact grid").front();
-    const Target scale = make_target(recordings, {ensemble_runs}, search, HeldOutRule{});
-    check.distance = scale.distance(nominal, refined);
+    const Target scale = make_target(recordings, {ensemble_runs}, search, HeldOutRule{}).with_recorded(refined);
+    check.distance = scale.ensemble_chi2(members_of(ensemble_runs, recordings.size()));
     check.limit = chi2_quantile_99(static_cast<int>(scale.recorded.size()));
     check.adopted = check.distance > check.limit;
     d.grid_checks.push_back(check);
@@ -1162,9 +1241,10 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   Target target = make_target(measured, {ensemble_runs}, search, held);
   const bool held_available = target.count(true) > 0;
   d.feature_count = static_cast<int>(target.recorded.size());
-  d.chi2_nominal = target.chi2(nominal, false) + target.chi2(nominal, true);
+  const std::vector<Features> nominal_members = members_of(ensemble_runs, recordings.size());
+  d.chi2_nominal = target.ensemble_chi2(nominal_members);
   d.chi2_noise_limit = chi2_quantile_99(d.feature_count);
-  d.mismatches = target.mismatches(nominal, options.z_threshold);
+  d.mismatches = target.mismatches(nominal_members, options.z_threshold);
 
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
   std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), &d.notes);
@@ -1232,11 +1312,19 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
         // The statistics are means over the perturbed members, not the seed-1 run the value was
         // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
         const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
-        const std::size_t n = recordings.size();
-        score(fits[i], mean_chi2(pooled, ensemble_runs, n, false), mean_chi2(pooled, candidate_runs, n, false),
-              pooled.count(false));
-        fits[i].held_out_delta =
-            held_available ? mean_chi2(pooled, ensemble_runs, n, true) - mean_chi2(pooled, candidate_runs, n, true) : 0.0;
+        const std::vector<Features> before = members_of(ensemble_runs, recordings.size()),
+                                    at = members_of(candidate_runs, recordings.size());
+        score(fits[i], ensemble_drop(pooled, before, pooled, at, false), pooled.count(false));
+        fits[i].chi2 = pooled.ensemble_chi2(at, false);
+        fits[i].held_out_delta = held_available ? ensemble_drop(pooled, before, pooled, at, true).value : 0.0;
+      } else {  // a sensor: the corrected recording against the same ensemble
+        std::vector<Recording> corrected = measured;
+        fits[i].candidate.correct(corrected[fits[i].candidate.recording], fits[i].value);
+        const Target at = make_target(corrected, {ensemble_runs}, search, held);
+        const std::vector<Features> members = members_of(ensemble_runs, recordings.size());
+        score(fits[i], ensemble_drop(target, members, at, members, false), target.count(false));
+        fits[i].chi2 = at.ensemble_chi2(members, false);
+        fits[i].held_out_delta = held_available ? ensemble_drop(target, members, at, members, true).value : 0.0;
       }
       // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
       // improvement must hold on the held-out features.
@@ -1287,21 +1375,20 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     for (std::size_t r = 0; r < recordings.size(); ++r) current.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
     target = make_target(measured, {ensemble_runs}, search, held);
   }
-  d.chi2_final = target.chi2(current, false) + target.chi2(current, true);
+  const std::vector<Features> final_members = members_of(ensemble_runs, recordings.size());
+  d.chi2_final = target.ensemble_chi2(final_members);
   for (const auto& [name, f] : target.recorded) {
-    auto value = [&](const Features& sim) {
-      const auto it = sim.find(name);
-      return it == sim.end() ? f.fallback : it->second.value;
-    };
-    d.features.push_back({name, f.mode, f.time, f.value, value(nominal), value(current), target.sd.at(name),
-                          target.held_out.count(name) > 0});
+    const double improved = Target::ensemble_mean(name, f, final_members, -1);
+    const double z = target.ensemble_z(name, f, final_members, -1);
+    d.features.push_back({name, f.mode, f.time, f.value, Target::ensemble_mean(name, f, nominal_members, -1), improved,
+                          z != 0 ? (f.value - improved) / z : target.sd.at(name), target.held_out.count(name) > 0});
   }
   d.recorded = measured;
   d.z_threshold = options.z_threshold;
   d.simulated_nominal = nominal_runs;
   d.simulated_final = nominal_runs;
   if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0, 0), "improved model", &d.simulated_final);
-  d.unexplained = target.mismatches(current, options.z_threshold);
+  d.unexplained = target.mismatches(final_members, options.z_threshold);
   d.simulations += search.simulations;
 
   // 4. The improved scenario: the user's, with the recording's bodies when it states none.
@@ -1343,13 +1430,13 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
                             : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
                                                     : fmt::format("+- {:.2g}", f.standard_error);
-    v += fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f}, p = {:.2g} after {} candidates, "
+    v += fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} candidates, "
                      "held-out improvement {:.1f}.{}{}\n",
                      e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
                                                                                       : "Missing physics",
                      f.candidate.description,
                      f.candidate.name, format_value(f.candidate, f.value), err, format_value(f.candidate, f.candidate.nominal),
-                     f.chi2 + f.delta, f.chi2, f.p_value, e.candidates_tried, f.held_out_delta,
+                     f.chi2 + f.delta, f.chi2, f.delta_se, f.p_value, e.candidates_tried, f.held_out_delta,
                      e.far_off ? " FAR from the stated value: check the nominal." : "",
                      e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")));
   }
@@ -1384,7 +1471,7 @@ json diagnosis_json(const Diagnosis& d) {
                 {"standard_error", std::isfinite(f.standard_error) ? json(f.standard_error) : json(nullptr)},
                 {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
                 {"range", {f.candidate.lower, f.candidate.upper}}, {"stated", f.candidate.stated},
-                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
+                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
                 {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations}};
   };
   auto mismatch = [](const Mismatch& m) {

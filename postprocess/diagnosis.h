@@ -101,7 +101,7 @@ struct Options {
   std::function<void(const std::string& stage, long done, long total)> progress;
 };
 
-struct Mismatch {             // a feature beyond the threshold
+struct Mismatch {             // a feature beyond the threshold (simulated: the ensemble mean)
   std::string feature, body, mode;
   double time = 0, recorded = 0, simulated = 0, z = 0;
 };
@@ -116,8 +116,9 @@ struct FittedCandidate {
   double value = 0, standard_error = 0;  // SI; log-scale: s.e. of the natural log
   double chi2 = 0;            // -2 log L at the value (features of the fit set)
   double delta = 0;           // chi2 of the model before - chi2 here
-  double p_value = 1;         // LRT, boundary-corrected
-  double delta_bic = 0;       // delta - ln(n): > 0 favours the candidate
+  double delta_se = 0;        // Monte Carlo s.e. of delta (jackknife over ensemble members; 0: profile only)
+  double p_value = 1;         // LRT at delta - 2 delta_se, boundary-corrected
+  double delta_bic = 0;       // delta - 2 delta_se - ln(n): > 0 favours the candidate
   double held_out_delta = 0;  // improvement on the held-out features, value fitted without them
   int evaluations = 0;
 };
@@ -133,13 +134,14 @@ struct Effect {               // an accepted candidate
 
 struct FeatureRow {           // one event feature, recorded and simulated
   std::string name, mode;
-  double time = 0, recorded = 0, nominal = 0, improved = 0, sd = 0;  // sd: of the final comparison
+  double time = 0, recorded = 0, nominal = 0, improved = 0;  // nominal, improved: ensemble means
+  double sd = 0;              // of the final comparison: (recorded - improved) / sd is the feature's z
   bool held_out = false;
 };
 
 struct GridCheck {            // the model's contact grid against a refined one (numerics before physics)
   std::string grid;           // the refined grid's nodes (JSON)
-  double distance = 0;        // sum of ((refined - model) / s)^2 over the features
+  double distance = 0;        // chi2 of the refined run against the model's ensemble (its z, as a recording's)
   double limit = 0;           // 99 % quantile of chi2(features): beyond it the model was not converged
   bool adopted = false;       // the refined grid became the model
 };

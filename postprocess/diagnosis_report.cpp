@@ -84,13 +84,13 @@ std::string overlay(const Diagnosis& d, const OverlaidChannel& o) {
 Table candidate_table(const Diagnosis& d, std::size_t round) {
   Table t;
   t.caption = fmt::format("Round {}: every candidate's 1-D profile fit", round + 1);
-  t.header = {"candidate", "value", "nominal", "delta chi2", "p", "delta BIC", "held-out delta chi2"};
+  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "p", "delta BIC", "held-out delta chi2"};
   std::set<std::string> accepted;
   for (const Effect& e : d.effects) accepted.insert(e.fit.candidate.name);
   for (const FittedCandidate& f : d.rounds[round]) {
     const CellMark mark = accepted.count(f.candidate.name) ? CellMark::good : CellMark::none;
     t.rows.push_back({text_cell(f.candidate.name, mark), number_cell(f.value), number_cell(f.candidate.nominal),
-                      number_cell(f.delta), number_cell(f.p_value, 2), number_cell(f.delta_bic),
+                      number_cell(f.delta), number_cell(f.delta_se), number_cell(f.p_value, 2), number_cell(f.delta_bic),
                       number_cell(f.held_out_delta)});
   }
   return t;

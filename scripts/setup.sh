@@ -8,6 +8,7 @@ PACKAGES=(
   liggghts libliggghts-dev liggghts-doc
   libopenmpi-dev openmpi-bin
   libeigen3-dev libhdf5-dev hdf5-tools libvtk9-dev libqhull-dev
+  libboost-dev  # Boost.Math (header only): Student t and normal quantiles of the diagnose statistics
   libgtest-dev libgmock-dev libbenchmark-dev
   libnlopt-cxx-dev libliquid-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
   libmujoco-dev  # used only by bench/ (MuJoCo 2.2.2, the peer in bench/time_to_accuracy.sh)

@@ -38,11 +38,11 @@ bool is_scenario(const std::string& path) {
 
 void print_candidates(const diagnosis::Diagnosis& d) {
   for (std::size_t r = 0; r < d.rounds.size(); ++r) {
-    fmt::print("round {}: {:<44} {:>12} {:>10} {:>9} {:>9} {:>9}\n", r + 1, "candidate", "value", "delta chi2",
-               "p", "dBIC", "held-out");
+    fmt::print("round {}: {:<44} {:>12} {:>10} {:>8} {:>9} {:>9} {:>9}\n", r + 1, "candidate", "value", "delta chi2",
+               "MC s.e.", "p", "dBIC", "held-out");
     for (const diagnosis::FittedCandidate& f : d.rounds[r])
-      fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>9.2g} {:>9.1f} {:>9.1f}\n", f.candidate.name, f.value, f.delta,
-                 f.p_value, f.delta_bic, f.held_out_delta);
+      fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>8.1f} {:>9.2g} {:>9.1f} {:>9.1f}\n", f.candidate.name, f.value,
+                 f.delta, f.delta_se, f.p_value, f.delta_bic, f.held_out_delta);
   }
 }
 
