@@ -4,6 +4,7 @@
 # only after every diagnosis has finished, compares the verdicts with the answer key.
 #
 #   bench/diagnose_study.sh [CASES] [PARALLEL]   (defaults: out/diagnose_cases, 2)
+#   FREESTAND_TOOL=PATH: the freestand binary to use (default build/freestand)
 #
 # Diagnose reads CASES/recordings only (NAME.csv + NAME.nominal.json) and the base scenario
 # of the case's name (the lab's model: contact stiffness, time step); the answers in
@@ -15,7 +16,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cases=${1:-out/diagnose_cases}
 parallel=${2:-2}
-tool="$root/build/freestand"
+tool=${FREESTAND_TOOL:-$root/build/freestand}  # a copy keeps a long study off a rebuild
 [ -x "$tool" ] || { echo "build first: scripts/build.sh" >&2; exit 1; }
 [ -d "$cases/recordings" ] || { echo "$cases/recordings: no case set (bench/generate_diagnose_cases.sh)" >&2; exit 1; }
 study="$cases/study"

@@ -1,20 +1,17 @@
 #include "diagnosis.h"
 
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 #include <stdlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
-#include <optional>
 #include <random>
 #include <set>
 
 #include "calibration.h"
 #include "comparison.h"
+#include "diagnosis_statistics.h"
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
@@ -41,8 +38,6 @@ const double kIndistinguishable = 2;  // chi2 difference below which two fits ar
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kGridRefinements = 3;    // contact grids tried beyond the model's (per_edge up to 8)
 const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
-const double kInfinity = std::numeric_limits<double>::infinity();
-const double kMonteCarloBound = 2;  // a chi2 drop is tested at its lower bound: drop - 2 Monte Carlo s.e.
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ catalogue
@@ -597,27 +592,6 @@ std::vector<Candidate> measurement_candidates(const MeasurementIssue& m, std::si
   return out;
 }
 
-// ------------------------------------------------------------------ statistics
-
-// P(chi2_1 > d).
-double chi2_1_tail(double d) { return d <= 0 ? 1.0 : std::erfc(std::sqrt(d / 2)); }
-
-// The standard-normal z with the tail probability of Student's t with nu degrees of freedom. A
-// feature's s.d. estimated from a few ensemble members makes its ratio t-, not normal-distributed,
-// and a sum of t^2 would count the heavy tails as misfit (E t^2 = nu / (nu - 2): 5/3 for 6 members).
-double t_as_z(double t, double nu) {
-  if (t == 0 || !(nu < 1e6)) return t;
-  const double tail = boost::math::cdf(boost::math::complement(boost::math::students_t(nu), std::abs(t)));
-  if (tail < 1e-300) return t;  // beyond double precision only the size matters
-  return std::copysign(boost::math::quantile(boost::math::complement(boost::math::normal(), tail)), t);
-}
-
-// 99 % quantile of chi2 with n degrees of freedom (Wilson-Hilferty, within 1 % for n >= 5).
-double chi2_quantile_99(int n) {
-  const double a = 2.0 / (9.0 * n);
-  return n * std::pow(1 - a + 2.326 * std::sqrt(a), 3);
-}
-
 // ------------------------------------------------------------------ the search
 
 // A simulation: a run document for one recording, a noise seed, a label.
@@ -708,82 +682,6 @@ class Search {
   int batches_ = 0;
 };
 
-// The recorded features with the s.d. of each (ensemble scatter and floor), and which are held out.
-// Two comparisons: one simulation against the recording (chi2: the profiles, common random
-// numbers) and an ensemble's mean prediction against it (ensemble_chi2: every test and verdict).
-struct Target {
-  Features recorded;
-  std::map<std::string, double> sd;            // sqrt(ensemble variance + floor^2): one run's scatter
-  std::map<std::string, double> ensemble_var;  // pooled variance of the members about their means
-  std::map<std::string, double> dof;           // degrees of freedom of ensemble_var (members - 1, summed)
-  std::set<std::string> held_out;
-
-  // Feature `name` of a simulation, or its fallback when the simulation lacks the event.
-  static double value_in(const Features& sim, const std::string& name, const FeatureValue& f) {
-    const auto s = sim.find(name);
-    return s == sim.end() ? f.fallback : s->second.value;
-  }
-  double chi2(const Features& sim, bool held) const {
-    double sum = 0;
-    for (const auto& [name, f] : recorded) {
-      if (held_out.count(name) != static_cast<std::size_t>(held)) continue;
-      sum += std::pow((value_in(sim, name, f) - f.value) / sd.at(name), 2);
-    }
-    return sum;
-  }
-  // The members' mean of feature `name`, member `skip` left out (the jackknife; -1: none).
-  static double ensemble_mean(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
-                              int skip) {
-    double sum = 0;
-    int n = 0;
-    for (int m = 0; m < static_cast<int>(members.size()); ++m)
-      if (m != skip) sum += value_in(members[m], name, f), ++n;
-    return n > 0 ? sum / n : f.fallback;
-  }
-  // The recording's z against the ensemble mean: t = (recorded - mean) / sqrt(var (1 + 1/M) + floor^2)
-  // (a new draw against the mean of M), as a normal z with the Welch-Satterthwaite degrees of
-  // freedom of that variance (the floor is known exactly).
-  double ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
-                    int skip) const {
-    const int m = static_cast<int>(members.size()) - (skip >= 0);
-    const double scatter = ensemble_var.at(name) * (1 + 1.0 / std::max(1, m));
-    const double variance = scatter + f.floor * f.floor;
-    const double nu = scatter > 0 ? variance * variance / (scatter * scatter / dof.at(name)) : kInfinity;
-    return t_as_z((f.value - ensemble_mean(name, f, members, skip)) / std::sqrt(variance), nu);
-  }
-  // Sum of the squared ensemble z over the fit set (held false), the held-out set (true) or all.
-  double ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held = std::nullopt,
-                       int skip = -1) const {
-    double sum = 0;
-    for (const auto& [name, f] : recorded)
-      if (!held || held_out.count(name) == static_cast<std::size_t>(*held))
-        sum += std::pow(ensemble_z(name, f, members, skip), 2);
-    return sum;
-  }
-  // The same scatter with a simulation in the recording's place: is it a draw of the ensemble?
-  Target with_recorded(const Features& sim) const {
-    Target t = *this;
-    for (auto& [name, f] : t.recorded) f.value = value_in(sim, name, f);
-    return t;
-  }
-  int count(bool held) const {
-    int n = 0;
-    for (const auto& [name, f] : recorded) n += held_out.count(name) == static_cast<std::size_t>(held);
-    return n;
-  }
-  std::vector<Mismatch> mismatches(const std::vector<Features>& members, double threshold) const {
-    std::vector<Mismatch> out;
-    for (const auto& [name, f] : recorded) {
-      const double z = ensemble_z(name, f, members, -1);
-      if (std::abs(z) > threshold)
-        out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value,
-                       ensemble_mean(name, f, members, -1), z});
-    }
-    std::sort(out.begin(), out.end(), [](const Mismatch& a, const Mismatch& b) { return a.time < b.time; });
-    return out;
-  }
-};
-
 double to_value(const Candidate& c, double u) {
   return c.log_scale ? std::exp(std::log(c.lower) + u * std::log(c.upper / c.lower)) : c.lower + u * (c.upper - c.lower);
 }
@@ -817,42 +715,6 @@ struct Profile {
   std::vector<double> u;          // scaled points
   std::vector<Features> features;
 };
-
-// Standard error (scaled units) from a parabola through the three points around the minimum:
-// chi2 rises by 1 at one s.d. NaN when not convex.
-double profile_sd(const std::vector<std::pair<double, double>>& points) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < points.size(); ++i) if (points[i].second < points[best].second) best = i;
-  if (best == 0 || best + 1 >= points.size()) return kNaN;
-  const auto [x0, y0] = points[best - 1];
-  const auto [x1, y1] = points[best];
-  const auto [x2, y2] = points[best + 1];
-  const double a = ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0);
-  return a > 0 ? 1 / std::sqrt(a) : kNaN;
-}
-
-// A chi2 drop and its Monte Carlo standard error (0 when not estimated).
-struct Drop {
-  double value = 0, se = 0;
-};
-
-// The test statistics of a fit: the chi2 drop taken at its lower Monte Carlo bound (drop - 2 s.e.:
-// the ensemble means are estimates, and a drop they could produce by chance is no evidence),
-// boundary-corrected LRT p-value, BIC difference (one parameter, n fit-set features).
-void score(FittedCandidate& f, const Drop& drop, int n) {
-  f.delta = drop.value;
-  f.delta_se = drop.se;
-  const double sure = drop.value - kMonteCarloBound * drop.se;
-  const double p_one = chi2_1_tail(sure);
-  f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
-  f.delta_bic = sure - std::log(std::max(1, n));
-}
-
-// A misfit beyond the noise (chi2 per degree of freedom above 1) widens a profile's s.d. by its
-// square root, the Birge ratio: the curvature alone assumes the model fits the data.
-double birge_ratio(double chi2, int features) {
-  return features > 1 ? std::max(1.0, std::sqrt(chi2 / (features - 1))) : 1.0;
-}
 
 FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
                           double held_base, bool held_available) {
@@ -935,23 +797,6 @@ std::vector<Features> members_of(const std::vector<Features>& runs, std::size_t 
     out.push_back(std::move(member));
   }
   return out;
-}
-
-// The chi2 drop from ensemble `before` (against target t0) to ensemble `at` (against t1), with
-// its Monte Carlo s.e. from the jackknife over the member pairs (member e of every ensemble has
-// the same perturbation and noise seed, so the pairs share what chaos and noise they can).
-Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
-                   const std::vector<Features>& at, std::optional<bool> held) {
-  Drop d{t0.ensemble_chi2(before, held) - t1.ensemble_chi2(at, held), 0};
-  const int m = static_cast<int>(std::min(before.size(), at.size()));
-  if (m < 3) return d;
-  std::vector<double> left_out;
-  for (int k = 0; k < m; ++k) left_out.push_back(t0.ensemble_chi2(before, held, k) - t1.ensemble_chi2(at, held, k));
-  double mean = 0, sum = 0;
-  for (double x : left_out) mean += x / m;
-  for (double x : left_out) sum += (x - mean) * (x - mean);
-  d.se = std::sqrt((m - 1.0) / m * sum);
-  return d;
 }
 
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41

@@ -1,0 +1,143 @@
+#include "diagnosis_statistics.h"
+
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "signal_tools.h"
+
+namespace freestand::diagnosis {
+
+namespace {
+const double kMonteCarloBound = 2;  // a chi2 drop is tested at drop - 2 Monte Carlo s.e. (97.7 % one-sided)
+}
+
+double chi2_1_tail(double d) { return d <= 0 ? 1.0 : std::erfc(std::sqrt(d / 2)); }
+
+// A feature's s.d. estimated from a few ensemble members makes its ratio t-, not normal-distributed,
+// and a sum of t^2 would count the heavy tails as misfit (E t^2 = nu / (nu - 2): 5/3 for 6 members).
+double t_as_z(double t, double nu) {
+  if (t == 0 || !(nu < 1e6)) return t;
+  const double tail = boost::math::cdf(boost::math::complement(boost::math::students_t(nu), std::abs(t)));
+  if (tail < 1e-300) return t;  // beyond double precision only the size matters
+  return std::copysign(boost::math::quantile(boost::math::complement(boost::math::normal(), tail)), t);
+}
+
+double chi2_quantile_99(int n) {
+  const double a = 2.0 / (9.0 * n);
+  return n * std::pow(1 - a + 2.326 * std::sqrt(a), 3);
+}
+
+// ------------------------------------------------------------------ Target
+
+double Target::value_in(const Features& sim, const std::string& name, const FeatureValue& f) {
+  const auto s = sim.find(name);
+  return s == sim.end() ? f.fallback : s->second.value;
+}
+
+double Target::chi2(const Features& sim, bool held) const {
+  double sum = 0;
+  for (const auto& [name, f] : recorded)
+    if (held_out.count(name) == static_cast<std::size_t>(held))
+      sum += std::pow((value_in(sim, name, f) - f.value) / sd.at(name), 2);
+  return sum;
+}
+
+double Target::ensemble_mean(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                             int skip) {
+  double sum = 0;
+  int n = 0;
+  for (int m = 0; m < static_cast<int>(members.size()); ++m)
+    if (m != skip) sum += value_in(members[m], name, f), ++n;
+  return n > 0 ? sum / n : f.fallback;
+}
+
+double Target::ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                          int skip) const {
+  const int m = static_cast<int>(members.size()) - (skip >= 0);
+  const double scatter = ensemble_var.at(name) * (1 + 1.0 / std::max(1, m));
+  const double variance = scatter + f.floor * f.floor;
+  const double nu = scatter > 0 ? variance * variance / (scatter * scatter / dof.at(name))
+                                : std::numeric_limits<double>::infinity();
+  return t_as_z((f.value - ensemble_mean(name, f, members, skip)) / std::sqrt(variance), nu);
+}
+
+double Target::ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held, int skip) const {
+  double sum = 0;
+  for (const auto& [name, f] : recorded)
+    if (!held || held_out.count(name) == static_cast<std::size_t>(*held))
+      sum += std::pow(ensemble_z(name, f, members, skip), 2);
+  return sum;
+}
+
+Target Target::with_recorded(const Features& sim) const {
+  Target t = *this;
+  for (auto& [name, f] : t.recorded) f.value = value_in(sim, name, f);
+  return t;
+}
+
+int Target::count(bool held) const {
+  int n = 0;
+  for (const auto& [name, f] : recorded) n += held_out.count(name) == static_cast<std::size_t>(held);
+  return n;
+}
+
+std::vector<Mismatch> Target::mismatches(const std::vector<Features>& members, double threshold) const {
+  std::vector<Mismatch> out;
+  for (const auto& [name, f] : recorded) {
+    const double z = ensemble_z(name, f, members, -1);
+    if (std::abs(z) > threshold)
+      out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value, ensemble_mean(name, f, members, -1), z});
+  }
+  std::sort(out.begin(), out.end(), [](const Mismatch& a, const Mismatch& b) { return a.time < b.time; });
+  return out;
+}
+
+// ------------------------------------------------------------------ tests of a fit
+
+Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
+                   const std::vector<Features>& at, std::optional<bool> held) {
+  Drop d{t0.ensemble_chi2(before, held) - t1.ensemble_chi2(at, held), 0};
+  const int m = static_cast<int>(std::min(before.size(), at.size()));
+  if (m < 3) return d;
+  std::vector<double> left_out;
+  for (int k = 0; k < m; ++k) left_out.push_back(t0.ensemble_chi2(before, held, k) - t1.ensemble_chi2(at, held, k));
+  double mean = 0, sum = 0;
+  for (double x : left_out) mean += x / m;
+  for (double x : left_out) sum += (x - mean) * (x - mean);
+  d.se = std::sqrt((m - 1.0) / m * sum);  // 0.8 of the true scatter for 6 members (DiagnosisStatistics test)
+  return d;
+}
+
+// The drop at its lower Monte Carlo bound: the ensemble means are estimates, and a drop they
+// could produce by chance is no evidence.
+void score(FittedCandidate& f, const Drop& drop, int n) {
+  f.delta = drop.value;
+  f.delta_se = drop.se;
+  const double sure = drop.value - kMonteCarloBound * drop.se;
+  const double p_one = chi2_1_tail(sure);
+  f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
+  f.delta_bic = sure - std::log(std::max(1, n));
+}
+
+double profile_sd(const std::vector<std::pair<double, double>>& points) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) if (points[i].second < points[best].second) best = i;
+  if (best == 0 || best + 1 >= points.size()) return signal::kNaN;
+  const auto [x0, y0] = points[best - 1];
+  const auto [x1, y1] = points[best];
+  const auto [x2, y2] = points[best + 1];
+  const double a = ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0);
+  return a > 0 ? 1 / std::sqrt(a) : signal::kNaN;
+}
+
+// The curvature alone assumes the model fits the data; a misfit beyond the noise (chi2 per
+// degree of freedom above 1) means the data say less: the Birge ratio.
+double birge_ratio(double chi2, int features) {
+  return features > 1 ? std::max(1.0, std::sqrt(chi2 / (features - 1))) : 1.0;
+}
+
+}  // namespace freestand::diagnosis

@@ -1,0 +1,87 @@
+#ifndef FREESTAND_POST_DIAGNOSIS_STATISTICS_H
+#define FREESTAND_POST_DIAGNOSIS_STATISTICS_H
+
+// The statistics of `freestand diagnose` (docs/diagnose.md, "Nominal, ensemble, features and
+// the likelihood"): recorded event features against simulated ones whose scatter (chaos and
+// noise) a small ensemble estimates. A single run serves the profiles (common random numbers);
+// every test and verdict compares the recording with an ensemble's mean, each feature's ratio
+// taken as Student's t (the scatter is estimated from a few members) and turned into a normal z,
+// and a chi2 drop is trusted only down to its Monte Carlo uncertainty.
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "diagnosis.h"
+
+namespace freestand::diagnosis {
+
+// P(chi2_1 > d).
+double chi2_1_tail(double d);
+
+// The standard-normal z with the tail probability of Student's t with nu degrees of freedom
+// (nu may be fractional; infinite: z = t).
+double t_as_z(double t, double nu);
+
+// 99 % quantile of chi2 with n degrees of freedom (Wilson-Hilferty, within 1 % for n >= 5).
+double chi2_quantile_99(int n);
+
+// The recorded features with the scatter of each, and which are held out.
+struct Target {
+  Features recorded;
+  std::map<std::string, double> sd;            // sqrt(ensemble variance + floor^2): one run's scatter
+  std::map<std::string, double> ensemble_var;  // variance of the members about their mean (ensembles pooled)
+  std::map<std::string, double> dof;           // degrees of freedom of ensemble_var (members - 1, summed)
+  std::set<std::string> held_out;
+
+  // Feature `name` of a simulation, or its fallback when the simulation lacks the event.
+  static double value_in(const Features& sim, const std::string& name, const FeatureValue& f);
+  // One simulation against the recording: sum of ((sim - recorded) / sd)^2 over the fit set
+  // (held false) or the held-out set (true). For profiles, where the noise seed is common.
+  double chi2(const Features& sim, bool held) const;
+  // The members' mean of feature `name`, member `skip` left out (the jackknife; -1: none).
+  static double ensemble_mean(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                              int skip);
+  // The recording's z against the members' mean: t = (recorded - mean) / sqrt(var (1 + 1/M) + floor^2)
+  // (a new draw against the mean of M draws) as t_as_z with the Welch-Satterthwaite degrees of
+  // freedom of that variance (the floor is known exactly).
+  double ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
+                    int skip) const;
+  // Sum of ensemble_z^2 over the fit set (held false), the held-out set (true) or all (nullopt).
+  double ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held = std::nullopt,
+                       int skip = -1) const;
+  // The same scatter with a simulation in the recording's place: is it a draw of the ensemble?
+  Target with_recorded(const Features& sim) const;
+  int count(bool held) const;
+  // Features with |ensemble z| beyond `threshold`, in time order.
+  std::vector<Mismatch> mismatches(const std::vector<Features>& members, double threshold) const;
+};
+
+// A chi2 drop and its Monte Carlo standard error (0 when not estimated).
+struct Drop {
+  double value = 0, se = 0;
+};
+
+// The chi2 drop from ensemble `before` (against target t0) to ensemble `at` (against t1), with
+// its Monte Carlo s.e. from the jackknife over the member pairs (member e of every ensemble has
+// the same perturbation and noise seed, so the pairs share what chaos and noise they can).
+Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
+                   const std::vector<Features>& at, std::optional<bool> held);
+
+// The test statistics of a fit from its chi2 drop, taken at its lower Monte Carlo bound
+// (drop - 2 s.e.): boundary-corrected LRT p-value and BIC difference (one parameter, n fit-set features).
+void score(FittedCandidate& f, const Drop& drop, int n);
+
+// Standard error (scaled units) from a parabola through the three points (u, chi2) around the
+// minimum: chi2 rises by 1 at one s.d. NaN when not convex.
+double profile_sd(const std::vector<std::pair<double, double>>& points);
+
+// max(1, sqrt(chi2 / (n - 1))): a misfit beyond the noise widens a profile's s.d. by it.
+double birge_ratio(double chi2, int features);
+
+}  // namespace freestand::diagnosis
+
+#endif
