@@ -604,6 +604,9 @@ struct Job {
 // A parameter point of the model: documents for every recording.
 using Model = std::vector<json>;
 
+std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members,
+                               double table_gain_sd);
+
 class Search {
  public:
   Search(const std::vector<Recording>& recordings, const Options& options, std::string directory)
@@ -643,12 +646,17 @@ class Search {
     return out;
   }
 
-  // Simulates one model (all recordings) per point with seed 1 (common random numbers: the same
-  // noise for every candidate value, so the objective changes only with the physics).
+  // Simulates one model (all recordings) per point as the ensemble's first member: its perturbed
+  // initial state, table gain and noise seed (common random numbers: the same for every
+  // candidate value, so the objective changes only with the physics). Not the unperturbed
+  // nominal: a state without any perturbation is special (a block shaken along x never rocks
+  // about x), not a draw of what was recorded, and every change of the model would seem to help.
   std::vector<Features> evaluate(const std::vector<Model>& points, const std::string& stage) {
     std::vector<Job> jobs;
-    for (const Model& m : points)
-      for (std::size_t r = 0; r < m.size(); ++r) jobs.push_back({m[r], r, 1});
+    for (const Model& m : points) {
+      const std::vector<Job> first = ensemble_jobs(m, recordings_, 1, options_.table_gain_sd);
+      jobs.insert(jobs.end(), first.begin() + static_cast<std::ptrdiff_t>(m.size()), first.end());
+    }
     const std::vector<Features> per_job = run(jobs, stage);
     std::vector<Features> out(points.size());
     for (std::size_t i = 0, j = 0; i < points.size(); ++i)
@@ -982,6 +990,7 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
 
 Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, const Options& options) {
   if (given.empty()) throw InputError("diagnose: no recording");
+  if (options.ensemble < 3) throw InputError(fmt::format("diagnose: --ensemble {}: at least 3 members are needed", options.ensemble));
   Diagnosis d;
   const std::vector<Recording> recordings =
       options.shooting ? shooting_pieces(with_sensor_noise(given, d.notes), d.notes) : with_sensor_noise(given, d.notes);
@@ -1025,11 +1034,8 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   // each with its own noise realisation.
   std::vector<Recording> nominal_runs(recordings.size());  // noise-free: the measurement check compares with them
   std::vector<Features> ensemble_runs;
-  Features nominal;
   auto run_ensemble = [&](const std::string& stage) {
     ensemble_runs = search.run(ensemble_jobs(base, recordings, options.ensemble, options.table_gain_sd), stage, &nominal_runs);
-    nominal.clear();
-    for (std::size_t r = 0; r < recordings.size(); ++r) nominal.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
   };
   run_ensemble("nominal and ensemble");
 
@@ -1093,7 +1099,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
 
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
   std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), &d.notes);
-  Features current = nominal;
+  Features current = nominal_members.front();  // the profiles' baseline: the first member (Search::evaluate)
   int tried = 0;
   for (int round = 0; round < options.max_effects && !(candidates.empty() && sensor_candidates.empty()); ++round) {
     const double chi2_base = target.chi2(current, false), held_base = target.chi2(current, true);
@@ -1216,8 +1222,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     // The scatter of chaos and noise depends on the model: from now on the ensemble around the
     // improved one.
     ensemble_runs = candidate_runs;
-    current.clear();
-    for (std::size_t r = 0; r < recordings.size(); ++r) current.insert(ensemble_runs[r].begin(), ensemble_runs[r].end());
+    current = members_of(ensemble_runs, recordings.size()).front();
     target = make_target(measured, {ensemble_runs}, search, held);
   }
   const std::vector<Features> final_members = members_of(ensemble_runs, recordings.size());

@@ -125,7 +125,7 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--jobs", o->options.jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
   sub->add_option("--ensemble", o->options.ensemble, "perturbed runs that measure the feature scatter")
       ->capture_default_str()
-      ->check(CLI::Range(2, 50));
+      ->check(CLI::Range(3, 50));  // the jackknife of a chi2 drop needs 3 member pairs
   sub->add_option("--table-gain-sd", o->options.table_gain_sd,
                   "relative s.d. of the recorded table acceleration's gain, drawn per ensemble member")
       ->capture_default_str()
