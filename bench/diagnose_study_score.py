@@ -89,6 +89,9 @@ def main(cases):
             "correct": correct, "recovery_error": error,
             "held_out_delta": first[2].get("held_out_delta_chi2") if first[2] else None,
             "all_named": [f"{a[1]}(r{a[0]})" for a in accepted],
+            # A background table gain is right only near 1 / the accelerometer's drawn gain.
+            "table_gain": [(a[2]["value"], 1 / answer["measurement"]["channel_gains"]["table_ax"])
+                           for a in accepted if a[1] == "table_gain"],
             "chi2_nominal": d["chi2_nominal"], "chi2_final": d["chi2_final"], "features": d["feature_count"],
             "simulations": d["simulations"], "seconds": seconds})
     failed = sorted(os.path.basename(p)[:-4] for p in glob.glob(os.path.join(study, "*.log"))
@@ -100,13 +103,15 @@ def write(study, rows, failed):
     effects = sorted({r["concealed"] for r in rows})
     columns = sorted({r["named"] for r in rows})
     lines = [f"Cases diagnosed: {len(rows)}" + (f"; not finished or failed: {', '.join(failed)}" if failed else ""), ""]
-    lines.append("| case | concealed | magnitude | named first | value | recovery error | held-out dchi2 | everything accepted (round) | chi2 nominal -> final (features) | sims | s |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    lines.append("| case | concealed | magnitude | named first | value | recovery error | held-out dchi2 | everything accepted (round) | table gain fitted (ideal) | chi2 nominal -> final (features) | sims | s |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         fmt = lambda v, f: "-" if v is None else format(v, f)
         lines.append(f"| {r['case']} | {r['concealed']} | {r['magnitude']:.4g} | {r['named']}{'' if r['correct'] else ' (wrong)'} | "
                      f"{fmt(r['value'], '.4g')} | {fmt(r['recovery_error'], '.0%')} | {fmt(r['held_out_delta'], '.1f')} | "
-                     f"{', '.join(r['all_named']) or '-'} | {r['chi2_nominal']:.0f} -> {r['chi2_final']:.0f} ({r['features']}) | "
+                     f"{', '.join(r['all_named']) or '-'} | "
+                     f"{', '.join(f'{g:.3f} ({i:.3f})' for g, i in r['table_gain']) or '-'} | "
+                     f"{r['chi2_nominal']:.0f} -> {r['chi2_final']:.0f} ({r['features']}) | "
                      f"{r['simulations']} | {r['seconds']:.0f} |")
     lines += ["", "Confusion matrix (rows: concealed, columns: named first; background measurement issues left out):", ""]
     lines.append("| concealed \\ named | " + " | ".join(columns) + " |")

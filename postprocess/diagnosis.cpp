@@ -746,12 +746,14 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   return f;
 }
 
-// Which features are held out: those of recordings named with `prefix`, or after `split`.
+// Which features are held out: those of recordings number first_recording and later (features
+// named "rN:..."), or with first_recording 0 those after `split`.
 struct HeldOutRule {
-  std::string prefix;
-  double split = 0;
+  std::size_t first_recording = 0;  // 1-based; 0: split by time
+  double split = 0;                 // s
   bool operator()(const std::string& name, const FeatureValue& f) const {
-    return prefix.empty() ? f.time > split : name.rfind(prefix, 0) == 0;
+    if (first_recording == 0) return f.time > split;
+    return name.size() > 1 && name[0] == 'r' && std::stoul(name.substr(1, name.find(':') - 1)) >= first_recording;
   }
 };
 
@@ -1076,11 +1078,16 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
       if (m.drift_significant) remove_drift(measured[r], m), d.measurement.push_back(m);
       for (Candidate& c : measurement_candidates(m, r)) sensor_candidates.push_back(std::move(c));
     }
-  // Held out: the last recording's features, or with one recording the later half of the events.
+  // Held out: the last third of the recordings (at least one), or with one recording the later
+  // half of the events. More than one when there are several: an effect fitted to the chance
+  // features of one held-out recording could still pass it.
   HeldOutRule held;
   if (recordings.size() > 1) {
-    held.prefix = fmt::format("r{}:", recordings.size());
-    d.notes.push_back(fmt::format("held out: {} (fitted on the others)", recordings.back().path));
+    const std::size_t count = std::max<std::size_t>(1, recordings.size() / 3);
+    held.first_recording = recordings.size() - count + 1;
+    std::vector<std::string> paths;
+    for (std::size_t r = held.first_recording - 1; r < recordings.size(); ++r) paths.push_back(recordings[r].path);
+    d.notes.push_back(fmt::format("held out: {} (fitted on the others)", fmt::join(paths, ", ")));
   } else {
     std::vector<double> times;
     for (const auto& [name, f] : event_features(measured.front(), recordings.front().nominal)) times.push_back(f.time);
