@@ -308,13 +308,15 @@ Candidate table_axis_candidate(const std::string& entry, const std::string& axis
 }
 
 // The recorded table acceleration, which the model replays, off by a gain: a measurement
-// issue that only a simulation can fit (it changes the model's input). The range is the
-// sensor gains' (0.8 .. 1.25).
-Candidate table_gain_candidate() {
+// issue that only a simulation can fit (it changes the model's input). The accelerometer's
+// calibration is known to gain_sd: that is its prior, N(1, gain_sd^2), and its range 4 s.d.
+// (without the prior a free gain would absorb any physics that scales the response, e.g. a
+// softer interface).
+Candidate table_gain_candidate(double gain_sd) {
   Candidate c;
   c.entry = "table_gain", c.where = "table_ax", c.name = "table_gain", c.unit = "";
   c.description = describe(c.entry, "");
-  c.lower = 0.8, c.upper = 1.25, c.nominal = 1, c.measurement = true;
+  c.lower = 1 - 4 * gain_sd, c.upper = 1 + 4 * gain_sd, c.nominal = 1, c.measurement = true, c.prior_sd = gain_sd;
   c.apply = [](json& d, double g) { d["table_motion"]["x"]["scale"] = g; };
   return c;
 }
@@ -327,7 +329,7 @@ double sample_step(const std::vector<double>& t) { return signal::median_step(t)
 
 const std::vector<CatalogueEntry>& catalogue() { return kCatalogue; }
 
-std::vector<Candidate> candidates_for(const json& document, const Recording& recording,
+std::vector<Candidate> candidates_for(const json& document, const Recording& recording, double table_gain_sd,
                                       std::vector<std::string>* skipped) {
   const Scene scene = parse_run_scene(document);
   std::vector<Candidate> out;
@@ -340,7 +342,7 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
     if (skipped) skipped->push_back("table motion candidates: need a recorded table_ax to drive them");
     return out;
   }
-  out.push_back(table_gain_candidate());
+  if (table_gain_sd > 0) out.push_back(table_gain_candidate(table_gain_sd));
   if (!recording.find("table_az"))
     out.push_back(table_axis_candidate("vertical_table_motion", "z", "az / ax", 0.5));
   else if (skipped)
@@ -703,15 +705,17 @@ Model applied(const Model& base, const Candidate& c, double value) {
   return m;
 }
 
-// Scaled points of a quick profile around the nominal u0: pairs u0 +- 0.04 x 3.75^k (0.04,
-// 0.15, 0.56 of the range), nearest first, clamped to [0, 1], without repeats. Dense near the
+// Scaled points of a quick profile around the nominal u0: pairs u0 +- 0.01 x 4^k (0.01, 0.04,
+// 0.16, 0.64 of the range), nearest first, clamped to [0, 1], without repeats. Dense near the
 // nominal because a chaotic model (rocking, overturning) can be smooth in the parameter only
-// close to it: a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses.
+// close to it (a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses), and
+// a ladder from 1 % because an effect hidden in the noise is small against a range that must
+// hold every plausible value (a 0.25 mm short corner, 0.6 % of its +-20 mm range).
 std::vector<double> profile_offsets(double u0, int count, double scale) {
   std::vector<double> out;
   for (int k = 0; static_cast<int>(out.size()) < count && k < 8; ++k)
     for (int sign : {1, -1}) {
-      const double u = std::clamp(u0 + sign * scale * 0.04 * std::pow(3.75, k), 0.0, 1.0);
+      const double u = std::clamp(u0 + sign * scale * 0.01 * std::pow(4.0, k), 0.0, 1.0);
       const bool repeat = std::abs(u - u0) < 1e-9 ||
                           std::any_of(out.begin(), out.end(), [&](double v) { return std::abs(u - v) < 1e-9; });
       if (!repeat && static_cast<int>(out.size()) < count) out.push_back(u);
@@ -727,14 +731,15 @@ struct Profile {
 FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
                           double held_base, bool held_available) {
   std::vector<std::pair<double, double>> curve;
-  for (std::size_t i = 0; i < p.u.size(); ++i) curve.push_back({p.u[i], target.chi2(p.features[i], false)});
+  for (std::size_t i = 0; i < p.u.size(); ++i)
+    curve.push_back({p.u[i], target.chi2(p.features[i], false) + prior_penalty(c, to_value(c, p.u[i]))});
   std::sort(curve.begin(), curve.end());
   std::size_t best = 0;
   for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
-  f.chi2 = curve[best].second;
+  f.chi2 = curve[best].second - prior_penalty(c, f.value);  // the fit's misfit; score() counts the prior
   score(f, {chi2_base - f.chi2, 0}, target.count(false));
   const double sd_u = profile_sd(curve) * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
@@ -1105,7 +1110,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   d.mismatches = target.mismatches(nominal_members, options.z_threshold);
 
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
-  std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), &d.notes);
+  std::vector<Candidate> candidates = candidates_for(base.front(), recordings.front(), options.table_gain_sd, &d.notes);
   Features current = nominal_members.front();  // the profiles' baseline: the first member (Search::evaluate)
   int tried = 0;
   for (int round = 0; round < options.max_effects && !(candidates.empty() && sensor_candidates.empty()); ++round) {

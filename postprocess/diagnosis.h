@@ -44,6 +44,7 @@ struct Candidate {
   bool at_boundary = false;  // the nominal value is a bound of the admissible range (LRT boundary correction)
   bool measurement = false;  // a measurement issue fitted by simulation (the replayed table): reported as
                              // such and never written into the improved scenario
+  double prior_sd = 0;       // > 0: a known calibration N(nominal, prior_sd^2); its -2 log adds to chi2
   std::function<void(nlohmann::json&, double)> apply;  // sets the value in a scenario document
   // Measurement candidates (sensor delay, gain) change the recording, not the model:
   std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
@@ -57,8 +58,9 @@ struct Candidate {
 // Candidates of every available catalogue entry for a run document (bodies,
 // interfaces, contact, table_motion as recording_scenario() makes it) whose
 // needed channels `recording` has; the reasons others were left out go to `skipped`.
+// With table_gain_sd 0 the replayed table acceleration is trusted exactly: no table_gain.
 std::vector<Candidate> candidates_for(const nlohmann::json& document, const Recording& recording,
-                                      std::vector<std::string>* skipped);
+                                      double table_gain_sd, std::vector<std::string>* skipped);
 
 // An event feature of one body (docs/diagnose.md lists them).
 struct FeatureValue {
@@ -92,7 +94,7 @@ struct Options {
   int ensemble = 6;           // perturbed runs that measure the feature scatter
   double table_gain_sd = 0.02;  // relative s.d. of the recorded table acceleration's gain (accelerometer
                                // calibration, 1-2 %): each ensemble member replays the table with its own gain
-  int profile_points = 4;     // points of each candidate's quick profile (around the nominal)
+  int profile_points = 6;     // points of each candidate's quick profile (around the nominal)
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
   int max_effects = 3;        // iterations of the search

@@ -112,12 +112,16 @@ Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const 
   return d;
 }
 
+double prior_penalty(const Candidate& c, double value) {
+  return c.prior_sd > 0 ? std::pow((value - c.nominal) / c.prior_sd, 2) : 0.0;
+}
+
 // The drop at its lower Monte Carlo bound: the ensemble means are estimates, and a drop they
 // could produce by chance is no evidence.
 void score(FittedCandidate& f, const Drop& drop, int n) {
   f.delta = drop.value;
   f.delta_se = drop.se;
-  const double sure = drop.value - kMonteCarloBound * drop.se;
+  const double sure = drop.value - kMonteCarloBound * drop.se - prior_penalty(f.candidate, f.value);
   const double p_one = chi2_1_tail(sure);
   f.p_value = f.candidate.at_boundary ? 0.5 * p_one : p_one;  // Self & Liang (1987): 0.5 chi2_0 + 0.5 chi2_1 at a bound
   f.delta_bic = sure - std::log(std::max(1, n));

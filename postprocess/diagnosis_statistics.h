@@ -71,8 +71,12 @@ struct Drop {
 Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
                    const std::vector<Features>& at, std::optional<bool> held);
 
+// -2 log of a candidate's prior at `value` relative to its nominal (0 without a prior).
+double prior_penalty(const Candidate& c, double value);
+
 // The test statistics of a fit from its chi2 drop, taken at its lower Monte Carlo bound
-// (drop - 2 s.e.): boundary-corrected LRT p-value and BIC difference (one parameter, n fit-set features).
+// (drop - 2 s.e.) less the prior's penalty: boundary-corrected LRT p-value and BIC difference
+// (one parameter, n fit-set features).
 void score(FittedCandidate& f, const Drop& drop, int n);
 
 // Standard error (scaled units) from a parabola through the three points (u, chi2) around the
