@@ -141,11 +141,12 @@ struct FeatureRow {           // one event feature, recorded and simulated
   bool held_out = false;
 };
 
-struct GridCheck {            // the model's contact grid against a refined one (numerics before physics)
-  std::string grid;           // the refined grid's nodes (JSON)
-  double distance = 0;        // chi2 of the refined run against the model's ensemble (its z, as a recording's)
+struct GridCheck {            // the model's contact grid against the finest one (numerics before physics)
+  std::string reference;      // the finest grid's nodes (JSON)
+  double distance = 0;        // chi2 of the finest grid's run against the model's ensemble (its z, as a recording's)
   double limit = 0;           // 99 % quantile of chi2(features): beyond it the model was not converged
-  bool adopted = false;       // the refined grid became the model
+  bool adopted = false;       // not converged: the model's grid was refined one step, to `grid`
+  std::string grid;           // the grid adopted (JSON); empty when converged
 };
 
 struct Diagnosis {

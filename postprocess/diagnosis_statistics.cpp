@@ -1,11 +1,13 @@
 #include "diagnosis_statistics.h"
 
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "signal_tools.h"
 
@@ -26,9 +28,47 @@ double t_as_z(double t, double nu) {
   return std::copysign(boost::math::quantile(boost::math::complement(boost::math::normal(), tail)), t);
 }
 
+namespace {
+
+// Nodes of the average over sigma^2 ~ nu s^2 / chi2_nu: chi2_nu quantiles at probabilities
+// u^4 (u at the midpoints of kNodes equal steps; dense where chi2 is small, sigma^2 large:
+// the far tail of the predictive comes from there), with weights 4 u^3 / kNodes.
+const int kNodes = 48;
+struct ScatterNodes {
+  std::vector<double> chi2, weight;
+};
+const ScatterNodes& scatter_nodes(double nu) {
+  static std::map<double, ScatterNodes> cache;  // a diagnosis has a few distinct dof
+  auto [at, fresh] = cache.try_emplace(nu);
+  if (fresh)
+    for (int k = 0; k < kNodes; ++k) {
+      const double u = (k + 0.5) / kNodes;
+      at->second.chi2.push_back(boost::math::quantile(boost::math::chi_squared(nu), std::pow(u, 4)));
+      at->second.weight.push_back(4 * std::pow(u, 3) / kNodes);
+    }
+  return at->second;
+}
+
+}  // namespace
+
+double predictive_z(double difference, double scatter, double nu, double floor2) {
+  if (scatter <= 0 || !(nu < 1e6)) return difference / std::sqrt(scatter + floor2);
+  if (floor2 <= 0) return t_as_z(difference / std::sqrt(scatter), nu);
+  const ScatterNodes& nodes = scatter_nodes(nu);
+  double tail = 0;  // two-sided: P(|new draw - mean| > |difference|)
+  for (int k = 0; k < kNodes; ++k)
+    tail += nodes.weight[k] * std::erfc(std::abs(difference) / std::sqrt(2 * (nu * scatter / nodes.chi2[k] + floor2)));
+  if (tail < 1e-300) return difference / std::sqrt(scatter + floor2);  // beyond double precision only the size matters
+  return std::copysign(boost::math::quantile(boost::math::complement(boost::math::normal(), tail / 2)), difference);
+}
+
 double chi2_quantile_99(int n) {
   const double a = 2.0 / (9.0 * n);
   return n * std::pow(1 - a + 2.326 * std::sqrt(a), 3);
+}
+
+double family_wise_z(double alpha, int n) {
+  return boost::math::quantile(boost::math::complement(boost::math::normal(), alpha / (2.0 * std::max(1, n))));
 }
 
 // ------------------------------------------------------------------ Target
@@ -59,10 +99,7 @@ double Target::ensemble_z(const std::string& name, const FeatureValue& f, const 
                           int skip) const {
   const int m = static_cast<int>(members.size()) - (skip >= 0);
   const double scatter = ensemble_var.at(name) * (1 + 1.0 / std::max(1, m));
-  const double variance = scatter + f.floor * f.floor;
-  const double nu = scatter > 0 ? variance * variance / (scatter * scatter / dof.at(name))
-                                : std::numeric_limits<double>::infinity();
-  return t_as_z((f.value - ensemble_mean(name, f, members, skip)) / std::sqrt(variance), nu);
+  return predictive_z(f.value - ensemble_mean(name, f, members, skip), scatter, dof.at(name), f.floor * f.floor);
 }
 
 double Target::ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held, int skip) const {

@@ -159,6 +159,29 @@ TEST(Diagnosis, NoEffectFindsNoMissingPhysics) {
   EXPECT_NE(d.verdict.find("No missing physics found"), std::string::npos);
 }
 
+// The truth rocks on a distributed base (surface grid, 8 segments per edge); the recording
+// states no grid, so the model starts on the default corners. The numerics check must see
+// that the finest grid is not a draw of the corner model, refine before looking for physics,
+// and then find nothing missing: an unconverged grid must not pass for an effect.
+TEST(Diagnosis, RefinesAnUnconvergedContactGridBeforeLookingForPhysics) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["bodies"][0]["nodes"] = {{"layout", "surface"}, {"per_edge", 8}};
+  Recording recording = rocking_recording(truth, dir, 16);
+  for (json& b : recording.nominal["bodies"]) b.erase("nodes");
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
+  std::cerr << d.verdict;
+  ASSERT_FALSE(d.grid_checks.empty());
+  EXPECT_TRUE(d.grid_checks.front().adopted);  // measured: 182 against a limit of 36
+  const json& nodes = d.improved["bodies"][0]["nodes"];  // the refined grid is the improved model's
+  EXPECT_EQ(nodes.value("layout", ""), "surface");
+  EXPECT_GE(nodes.value("per_edge", 0), 2);
+  EXPECT_TRUE(d.effects.empty());
+  EXPECT_NE(d.verdict.find("No missing physics found"), std::string::npos);
+}
+
 // The scenario commands a 3 Hz table motion of 0.3 m/s^2 (far below the block's uplift at
 // g b/h = 3.3 m/s^2 and sliding at 5.9 m/s^2: it stands still), but the table lagged it by
 // 12 ms at 97 % of its amplitude. Diagnose must report that as a measurement issue (within
@@ -212,7 +235,7 @@ json driven_table(json document, const std::string& entry, double c) {
   Recording channels;  // the candidates need only a recorded table_ax and a rocking body
   channels.channels = {{"table_ax", {}}, {"block.rock_x", {}}};
   bool applied = false;
-  for (const diagnosis::Candidate& k : diagnosis::candidates_for(document, channels, nullptr))
+  for (const diagnosis::Candidate& k : diagnosis::candidates_for(document, channels, 0, nullptr))
     if (k.entry == entry) k.apply(document, c), applied = true;
   EXPECT_TRUE(applied) << "no candidate " << entry;  // else the truth would silently lack the effect
   return document;
