@@ -1077,8 +1077,8 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   // noise seed) is compared with the model's ensemble as a recording would be; beyond the 99 %
   // quantile of chi2 it is not one more draw of the model, and the model's grid is refined one
   // step (surface, per_edge 2, 4, 8), its ensemble rerun and compared again. Against the finest,
-  // not the next step: on the case set one step from the corners to 2 per edge moved the
-  // features by 38 (limit 100) while 8 per edge moved them by 180 (docs/diagnose.md).
+  // not the next step: on case10 of the case set one step from the corners to 2 per edge moved
+  // the features by 38 (limit 100) while 8 per edge moved them by 978 (docs/diagnose.md).
   // A grid the model states, for a body or for all (`contact.layout`), is its author's choice
   // (layout "vertices": Housner's corner contact, exact for a rigid cube), not a
   // discretisation, and is kept.
