@@ -15,7 +15,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-out/diagnose_cases}
-tool="$root/build/freestand"
+tool=${FREESTAND_TOOL:-$root/build/freestand}  # a copy keeps generation off a rebuild
 [ -x "$tool" ] || { echo "build first: scripts/build.sh" >&2; exit 1; }
 start=$(date +%s)
 "$tool" generate "$root/bench/diagnose_cases.json" -o "$out/recordings" --answers "$out/answers" -j 2 --keep-going

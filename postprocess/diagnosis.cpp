@@ -374,14 +374,14 @@ LaunchedEvents launched_events_of(const analysis::BodyMotion& m, double size, co
 // high it bounces, when it comes to rest and where.
 template <class Add>
 void launched_features(const AnalysedBody& body, double size, const analysis::AnalysisParameters& p, Add& add) {
-  const double dt = sample_step(body.motion.time), end = body.motion.time.back();
+  const double dt = sample_step(body.motion.time);
   const LaunchedEvents e = launched_events_of(body.motion, size, p);
   for (std::size_t i = 0; i < e.touchdowns.size() && i < kLaunchEvents; ++i) {
-    add(fmt::format("touchdown{}.time", i + 1), e.touchdowns[i], e.touchdowns[i], dt, "uplift", end);
+    add(fmt::format("touchdown{}.time", i + 1), e.touchdowns[i], e.touchdowns[i], dt, "uplift", true);
     add(fmt::format("bounce{}.height", i + 1), e.bounce_heights[i], e.touchdowns[i], std::sqrt(2.0) * p.length_noise,
-        "uplift", 0);
+        "uplift", false);
   }
-  add("rest.time", e.rest_time, e.rest_time, dt, "slide", end);
+  add("rest.time", e.rest_time, e.rest_time, dt, "slide", true);
   // Where it rests; not its final orientation: which face ends down is a discrete outcome
   // (rock angles of 0 or +-pi/2, headings equal modulo pi/2), whose difference is no
   // Gaussian residual.
@@ -389,7 +389,7 @@ void launched_features(const AnalysedBody& body, double size, const analysis::An
   for (int c : {analysis::kSlideX, analysis::kSlideY, analysis::kUplift})
     if (!body.motion.channels[c].empty())
       add(channel_names()[c] + ".residual", s.residual.mean[c], s.residual.window_start, p.length_noise,
-          c == analysis::kUplift ? "uplift" : "slide", 0);
+          c == analysis::kUplift ? "uplift" : "slide", false);
 }
 
 Features event_features(const Recording& recording, const json& analysis_nominal) {
@@ -398,12 +398,13 @@ Features event_features(const Recording& recording, const json& analysis_nominal
   const analysis::AnalysisParameters p = parameters_for(analysis_nominal);
   const double dt = sample_step(r.time), end = r.time.back();
   Features out;
+  // `event`: the feature dates an event (an impact, a slip, the onset), whose existence is
+  // compared on its own (Target::ensemble_z); the event's other features only where it exists.
   for (const AnalysedBody& body : analyse_recording(r)) {
     const analysis::MotionSummary& s = body.summary;
     const auto& names = channel_names();
-    auto add = [&](const std::string& name, double value, double time, double floor, const char* mode,
-                   double fallback) {
-      if (std::isfinite(value)) out[body.name + "." + name] = {value, std::isfinite(time) ? time : 0.0, floor, mode, fallback};
+    auto add = [&](const std::string& name, double value, double time, double floor, const char* mode, bool event) {
+      if (std::isfinite(value)) out[body.name + "." + name] = {value, std::isfinite(time) ? time : 0.0, floor, mode, event};
     };
     const json* spec = body_spec(analysis_nominal, body.name);
     if (spec && is_launched(*spec) && !body.motion.channels[analysis::kUplift].empty()) {
@@ -416,9 +417,9 @@ Features event_features(const Recording& recording, const json& analysis_nominal
       const double noise = angle ? p.angle_noise : p.length_noise;
       const char* mode = c <= analysis::kRockY ? "rock" : c == analysis::kTwist ? "twist" : c == analysis::kUplift ? "uplift" : "slide";
       const std::string ch = names[c];
-      add(ch + ".peak_max", s.peaks[c].max, s.peaks[c].t_max, noise, mode, 0);
-      if (c != analysis::kUplift) add(ch + ".peak_min", s.peaks[c].min, s.peaks[c].t_min, noise, mode, 0);
-      add(ch + ".residual", s.residual.mean[c], s.residual.window_start, noise, mode, 0);
+      add(ch + ".peak_max", s.peaks[c].max, s.peaks[c].t_max, noise, mode, false);
+      if (c != analysis::kUplift) add(ch + ".peak_min", s.peaks[c].min, s.peaks[c].t_min, noise, mode, false);
+      add(ch + ".residual", s.residual.mean[c], s.residual.window_start, noise, mode, false);
     }
     for (int axis : {0, 1}) {
       if (body.motion.channels[axis].empty()) continue;
@@ -427,34 +428,34 @@ Features event_features(const Recording& recording, const json& analysis_nominal
       for (std::size_t i = 0; i < ri.impacts.size() && i < kEventsPerAxis; ++i) {
         const analysis::Impact& im = ri.impacts[i];
         const std::string e = fmt::format("{}.impact{}", ch, i + 1);
-        add(e + ".time", im.time, im.time, dt, "rock", end);
-        add(e + ".amplitude_after", im.amplitude_after, im.time, p.angle_noise, "rock", 0);
-        add(e + ".ratio", im.ratio, im.time, std::max(std::isfinite(im.ratio_sd) ? im.ratio_sd : 0.0, 0.01), "rock", 0);
+        add(e + ".time", im.time, im.time, dt, "rock", true);
+        add(e + ".amplitude_after", im.amplitude_after, im.time, p.angle_noise, "rock", false);
+        add(e + ".ratio", im.ratio, im.time, std::max(std::isfinite(im.ratio_sd) ? im.ratio_sd : 0.0, 0.01), "rock", false);
       }
-      add(ch + ".median_ratio", ri.median_ratio, ri.impacts.empty() ? 0 : ri.impacts.front().time, 0.01, "rock", 0);
+      add(ch + ".median_ratio", ri.median_ratio, ri.impacts.empty() ? 0 : ri.impacts.front().time, 0.01, "rock", false);
       if (!ri.impacts.empty())
         add(ch + ".dominant_frequency", comparison::spectrum(body.motion.time, body.motion.channels[axis]).dominant_frequency,
-            0, 1 / (end - r.time.front()), "rock", 0);
+            0, 1 / (end - r.time.front()), "rock", false);
     }
     double total_slip = 0;
     for (std::size_t i = 0; i < s.slips.size(); ++i) {
       const double slip = std::hypot(s.slips[i].slip_x, s.slips[i].slip_y);
       if (std::isfinite(slip)) total_slip += slip;
-      if (i < kEventsPerAxis) add(fmt::format("slip{}.length", i + 1), slip, s.slips[i].onset, p.length_noise, "slide", 0);
+      if (i < kEventsPerAxis) add(fmt::format("slip{}.length", i + 1), slip, s.slips[i].onset, p.length_noise, "slide", true);
     }
     if (!body.motion.channels[analysis::kSlideX].empty())
-      add("total_slip", total_slip, s.slips.empty() ? 0 : s.slips.front().onset, p.length_noise, "slide", 0);
+      add("total_slip", total_slip, s.slips.empty() ? 0 : s.slips.front().onset, p.length_noise, "slide", false);
     for (const analysis::ModeSegment& m : s.modes)
       if (m.mode != analysis::Mode::rest && m.mode != analysis::Mode::lost) {
-        add("motion_onset", m.start, m.start, dt, "rock", end);
+        add("motion_onset", m.start, m.start, dt, "rock", true);
         break;
       }
     double gap = 0;
     for (const analysis::Separation& sep : s.separations) gap = std::max(gap, sep.peak_gap);
-    if (!s.separations.empty()) add("peak_separation", gap, s.separations.front().start, p.length_noise, "uplift", 0);
+    if (!s.separations.empty()) add("peak_separation", gap, s.separations.front().start, p.length_noise, "uplift", true);
     if (!body.motion.channels[0].empty() && !body.motion.channels[1].empty())
       add("residual_tilt", analysis::tilt(s.residual.mean[0], s.residual.mean[1]), s.residual.window_start,
-          p.angle_noise, "rock", 0);
+          p.angle_noise, "rock", false);
   }
   return out;
 }
@@ -702,11 +703,6 @@ class Search {
     return out;
   }
 
-  // Whether feature `name` belongs to recording number r.
-  bool belongs(const std::string& name, std::size_t r) const {
-    return recordings_.size() == 1 || name.rfind(fmt::format("r{}:", r + 1), 0) == 0;
-  }
-
   static MeasurementNoise noise_for(const Recording& r, unsigned seed) {
     const analysis::AnalysisParameters p = parameters_for(r.nominal);
     return {p.angle_noise, p.length_noise, seed};
@@ -791,46 +787,6 @@ struct HeldOutRule {
   }
 };
 
-// Variance of feature `name` (fallback when absent) over an ensemble's members (the runs
-// after the first recordings.size() nominal ones).
-double ensemble_variance(const std::string& name, const FeatureValue& f, const std::vector<Features>& runs,
-                         std::size_t recordings, const Search& search) {
-  std::vector<double> v;
-  for (std::size_t j = recordings; j < runs.size(); ++j) {
-    if (!search.belongs(name, j % recordings)) continue;
-    const auto s = runs[j].find(name);
-    v.push_back(s == runs[j].end() ? f.fallback : s->second.value);
-  }
-  double mean = 0, var = 0;
-  for (double x : v) mean += x / v.size();
-  for (double x : v) var += (x - mean) * (x - mean) / std::max<std::size_t>(1, v.size() - 1);
-  return var;
-}
-
-// The recorded features with each one's s.d.: the scatter of the ensembles (their variances
-// averaged: the model before and a candidate are compared with the scatter of both) plus the
-// feature's floor, in quadrature.
-Target make_target(const std::vector<Recording>& recordings, const std::vector<std::vector<Features>>& ensembles,
-                   const Search& search, const HeldOutRule& held) {
-  Target t;
-  for (std::size_t r = 0; r < recordings.size(); ++r) {
-    const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
-    t.recorded.insert(f.begin(), f.end());
-  }
-  double dof = 0;
-  for (const std::vector<Features>& runs : ensembles) dof += std::max<double>(1, runs.size() / recordings.size() - 2);
-  for (const auto& [name, f] : t.recorded) {
-    double var = 0;
-    for (const std::vector<Features>& runs : ensembles)
-      var += ensemble_variance(name, f, runs, recordings.size(), search) / ensembles.size();
-    t.ensemble_var[name] = var;
-    t.dof[name] = dof;
-    t.sd[name] = std::sqrt(var + f.floor * f.floor);
-    if (held(name, f)) t.held_out.insert(name);
-  }
-  return t;
-}
-
 // An ensemble's perturbed members (the runs after the first `recordings` nominal ones), each
 // merged over the recordings.
 std::vector<Features> members_of(const std::vector<Features>& runs, std::size_t recordings) {
@@ -841,6 +797,23 @@ std::vector<Features> members_of(const std::vector<Features>& runs, std::size_t 
     out.push_back(std::move(member));
   }
   return out;
+}
+
+// The recorded features against the ensembles (docs/diagnose.md, step 2), with the held-out
+// ones marked.
+Target make_target(const std::vector<Recording>& recordings, const std::vector<std::vector<Features>>& ensembles,
+                   const Search& search, const HeldOutRule& held) {
+  Features recorded;
+  for (std::size_t r = 0; r < recordings.size(); ++r) {
+    const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
+    recorded.insert(f.begin(), f.end());
+  }
+  std::vector<std::vector<Features>> members;
+  for (const std::vector<Features>& runs : ensembles) members.push_back(members_of(runs, recordings.size()));
+  Target t = target_of(recorded, members);
+  for (const auto& [name, f] : t.recorded)
+    if (held(name, f)) t.held_out.insert(name);
+  return t;
 }
 
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
@@ -1272,12 +1245,11 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   }
   const std::vector<Features> final_members = members_of(ensemble_runs, recordings.size());
   d.chi2_final = target.ensemble_chi2(final_members);
-  for (const auto& [name, f] : target.recorded) {
-    const double improved = Target::ensemble_mean(name, f, final_members, -1);
-    const double z = target.ensemble_z(name, f, final_members, -1);
-    d.features.push_back({name, f.mode, f.time, f.value, Target::ensemble_mean(name, f, nominal_members, -1), improved,
-                          z != 0 ? (f.value - improved) / z : target.sd.at(name), target.held_out.count(name) > 0});
-  }
+  for (const auto& [name, f] : target.recorded)
+    d.features.push_back({name, f.mode, f.time, f.present ? f.value : signal::kNaN,
+                          Target::ensemble_mean(name, nominal_members, -1), Target::ensemble_mean(name, final_members, -1),
+                          target.ensemble_z(name, f, nominal_members, -1), target.ensemble_z(name, f, final_members, -1),
+                          target.held_out.count(name) > 0});
   d.recorded = measured;
   d.z_threshold = options.z_threshold;
   d.simulated_nominal = nominal_runs;

@@ -68,7 +68,8 @@ struct FeatureValue {
   double time = 0;    // s, when it happened (held-out split, localisation)
   double floor = 0;   // s.d. it cannot be measured better than (noise, sampling)
   std::string mode;   // rock, slide, twist, uplift
-  double fallback = 0;  // value for a simulation that lacks the event
+  bool event = false;   // marks an event (its time): whether it happens at all is evidence of its own
+  bool present = true;  // false: an event simulations have that the recording lacks (value unused)
 };
 using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.amplitude" -> value
 // Features of every body of `recording`, analysed with `analysis_nominal`'s
@@ -136,8 +137,8 @@ struct Effect {               // an accepted candidate
 
 struct FeatureRow {           // one event feature, recorded and simulated
   std::string name, mode;
-  double time = 0, recorded = 0, nominal = 0, improved = 0;  // nominal, improved: ensemble means
-  double sd = 0;              // of the final comparison: (recorded - improved) / sd is the feature's z
+  double time = 0, recorded = 0, nominal = 0, improved = 0;  // nominal, improved: ensemble means (NaN: absent)
+  double z_nominal = 0, z_improved = 0;  // the recording's z against each ensemble (existence and value)
   bool held_out = false;
 };
 

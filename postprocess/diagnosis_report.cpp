@@ -98,11 +98,11 @@ Table candidate_table(const Diagnosis& d, std::size_t round) {
 
 Table feature_table(const Diagnosis& d, double threshold) {
   Table t;
-  t.caption = fmt::format("Event features: recorded against the model as given and improved; z = (recorded - "
-                          "simulated) / s.d., beyond {} marked", threshold);
+  t.caption = fmt::format("Event features: recorded against the model as given and improved (ensemble means; n/a: "
+                          "the event is absent); z of the event's existence and value, beyond {} marked", threshold);
   t.header = {"feature", "t (s)", "held out", "recorded", "as given", "z", "improved", "z"};
   for (const FeatureRow& f : d.features) {
-    const double z0 = (f.recorded - f.nominal) / f.sd, z1 = (f.recorded - f.improved) / f.sd;
+    const double z0 = f.z_nominal, z1 = f.z_improved;
     t.rows.push_back({text_cell(f.name), number_cell(f.time, 3), text_cell(f.held_out ? "yes" : ""),
                       number_cell(f.recorded), number_cell(f.nominal), number_cell(z0, 2, z_mark(z0, threshold)),
                       number_cell(f.improved), number_cell(z1, 2, z_mark(z1, threshold))});

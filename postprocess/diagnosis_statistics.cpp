@@ -71,35 +71,49 @@ double family_wise_z(double alpha, int n) {
   return boost::math::quantile(boost::math::complement(boost::math::normal(), alpha / (2.0 * std::max(1, n))));
 }
 
+double existence_z(int agree, int members) {
+  const double q = (agree + 0.5) / (members + 1.0);
+  return boost::math::quantile(boost::math::complement(boost::math::normal(), q / 2));
+}
+
 // ------------------------------------------------------------------ Target
 
-double Target::value_in(const Features& sim, const std::string& name, const FeatureValue& f) {
-  const auto s = sim.find(name);
-  return s == sim.end() ? f.fallback : s->second.value;
+bool Target::compares_value(const std::string& name, const FeatureValue& f) const {
+  return f.present && dof.at(name) >= kMinScatterDof;
 }
 
 double Target::chi2(const Features& sim, bool held) const {
   double sum = 0;
-  for (const auto& [name, f] : recorded)
-    if (held_out.count(name) == static_cast<std::size_t>(held))
-      sum += std::pow((value_in(sim, name, f) - f.value) / sd.at(name), 2);
+  for (const auto& [name, f] : recorded) {
+    if (held_out.count(name) != static_cast<std::size_t>(held)) continue;
+    const auto s = sim.find(name);
+    const bool has = s != sim.end();
+    if (f.event) sum += std::pow(existence_z(has == f.present, 1), 2);
+    if (has && compares_value(name, f)) sum += std::pow((s->second.value - f.value) / sd.at(name), 2);
+  }
   return sum;
 }
 
-double Target::ensemble_mean(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
-                             int skip) {
+double Target::ensemble_mean(const std::string& name, const std::vector<Features>& members, int skip) {
   double sum = 0;
   int n = 0;
-  for (int m = 0; m < static_cast<int>(members.size()); ++m)
-    if (m != skip) sum += value_in(members[m], name, f), ++n;
-  return n > 0 ? sum / n : f.fallback;
+  for (int m = 0; m < static_cast<int>(members.size()); ++m) {
+    const auto s = members[m].find(name);
+    if (m != skip && s != members[m].end()) sum += s->second.value, ++n;
+  }
+  return n > 0 ? sum / n : signal::kNaN;
 }
 
 double Target::ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
                           int skip) const {
-  const int m = static_cast<int>(members.size()) - (skip >= 0);
-  const double scatter = ensemble_var.at(name) * (1 + 1.0 / std::max(1, m));
-  return predictive_z(f.value - ensemble_mean(name, f, members, skip), scatter, dof.at(name), f.floor * f.floor);
+  int m = 0, k = 0;
+  for (int j = 0; j < static_cast<int>(members.size()); ++j)
+    if (j != skip) ++m, k += members[j].count(name) > 0;
+  const double existence = f.event ? existence_z(f.present ? k : m - k, m) : 0.0;
+  if (k == 0 || !compares_value(name, f)) return f.present ? existence : -existence;
+  const double scatter = ensemble_var.at(name) * (1 + 1.0 / k);
+  const double value = predictive_z(f.value - ensemble_mean(name, members, skip), scatter, dof.at(name), f.floor * f.floor);
+  return std::copysign(std::hypot(existence, value), value);
 }
 
 double Target::ensemble_chi2(const std::vector<Features>& members, std::optional<bool> held, int skip) const {
@@ -112,7 +126,11 @@ double Target::ensemble_chi2(const std::vector<Features>& members, std::optional
 
 Target Target::with_recorded(const Features& sim) const {
   Target t = *this;
-  for (auto& [name, f] : t.recorded) f.value = value_in(sim, name, f);
+  for (auto& [name, f] : t.recorded) {
+    const auto s = sim.find(name);
+    f.present = s != sim.end();
+    if (f.present) f.value = s->second.value;
+  }
   return t;
 }
 
@@ -127,10 +145,55 @@ std::vector<Mismatch> Target::mismatches(const std::vector<Features>& members, d
   for (const auto& [name, f] : recorded) {
     const double z = ensemble_z(name, f, members, -1);
     if (std::abs(z) > threshold)
-      out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.value, ensemble_mean(name, f, members, -1), z});
+      out.push_back({name, name.substr(0, name.find('.')), f.mode, f.time, f.present ? f.value : signal::kNaN,
+                     ensemble_mean(name, members, -1), z});
   }
   std::sort(out.begin(), out.end(), [](const Mismatch& a, const Mismatch& b) { return a.time < b.time; });
   return out;
+}
+
+namespace {
+
+struct MemberScatter {
+  double variance = 0;  // about the mean of the members that have the feature
+  double dof = 0;       // those members - 1 (0 for fewer than 2)
+};
+
+MemberScatter member_scatter(const std::string& name, const std::vector<Features>& members) {
+  std::vector<double> v;
+  for (const Features& m : members)
+    if (const auto s = m.find(name); s != m.end()) v.push_back(s->second.value);
+  if (v.size() < 2) return {};
+  double mean = 0, var = 0;
+  for (double x : v) mean += x / v.size();
+  for (double x : v) var += (x - mean) * (x - mean) / (v.size() - 1);
+  return {var, v.size() - 1.0};
+}
+
+}  // namespace
+
+Target target_of(const Features& recorded, const std::vector<std::vector<Features>>& ensembles) {
+  Target t;
+  t.recorded = recorded;
+  for (const std::vector<Features>& members : ensembles)
+    for (const Features& m : members)
+      for (const auto& [name, f] : m)
+        if (f.event && !t.recorded.count(name)) {
+          t.recorded[name] = f;
+          t.recorded[name].present = false;
+        }
+  for (const auto& [name, f] : t.recorded) {
+    double sum = 0, dof = 0;
+    for (const std::vector<Features>& members : ensembles) {
+      const MemberScatter s = member_scatter(name, members);
+      sum += s.variance * s.dof, dof += s.dof;
+    }
+    const double var = dof > 0 ? sum / dof : 0.0;
+    t.ensemble_var[name] = var;
+    t.dof[name] = dof;
+    t.sd[name] = std::sqrt(var + f.floor * f.floor);
+  }
+  return t;
 }
 
 // ------------------------------------------------------------------ tests of a fit

@@ -79,7 +79,10 @@ TEST(Diagnosis, NamesAndRecoversRestitution) {
   EXPECT_NEAR(d.effects.front().fit.value, 0.35, 0.05);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
   EXPECT_FALSE(d.mismatches.empty());  // the model as given was located as wrong
-  EXPECT_LT(d.chi2_final, 0.1 * d.chi2_nominal);
+  // The model as given is beyond the 99 % noise limit, the improved one within it (a right
+  // model's misfit is a chi2 draw: 21.6 for 24 features, measured).
+  EXPECT_GT(d.chi2_nominal, d.chi2_noise_limit);
+  EXPECT_LT(d.chi2_final, d.chi2_noise_limit);
   EXPECT_NEAR(d.improved["interfaces"][0]["restitution"].get<double>(), d.effects.front().fit.value, 1e-12);
   EXPECT_TRUE(d.measurement.empty());  // no delay or gain was put in
   // The report overlays the mismatched channel and lists the accepted candidate.
