@@ -8,7 +8,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-diagnose_cube_tosses}
-tool="$root/build/freestand"
+tool=${FREESTAND_TOOL:-$root/build/freestand}  # a copy keeps a long run off a rebuild
 model="$root/inputs/calibration/cube_toss_model.json"
 mkdir -p "$out"
 "$tool" tosses "$root/../shared/data/experiments/cube_toss/cube_tosses_0-299.csv.gz" -o "$out/tosses"
