@@ -645,8 +645,9 @@ class Search {
       : recordings_(recordings), options_(options), directory_(std::move(directory)) {}
 
   // Features of every job (prefixed with the recording number when there are
-  // several); a failed simulation gives no features (each falls back).
-  // With `raw`, the first raw.size() simulations are also kept as they ran (noise-free).
+  // several); a failed simulation's hold kFailedSimulation alone.
+  // With `raw` (the model as given or as improved, with its ensemble), every simulation must run
+  // and the first raw.size() are also kept as they ran (noise-free).
   std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {
     std::vector<Features> out;
     const std::size_t chunk = std::max(1, options_.jobs) * 2;
@@ -662,11 +663,11 @@ class Search {
       for (std::size_t i = 0; i < sims.size(); ++i) {
         const Job& job = jobs[first + i];
         Features f;
-        if (raw && first + i < raw->size()) {
-          if (failures[i]) std::rethrow_exception(failures[i]);  // the nominal model must run
-          (*raw)[first + i] = sims[i];
-        }
-        if (!failures[i]) {
+        if (raw && failures[i]) std::rethrow_exception(failures[i]);
+        if (raw && first + i < raw->size()) (*raw)[first + i] = sims[i];
+        if (failures[i]) {
+          f[kFailedSimulation] = {};
+        } else {
           add_measurement_noise(sims[i], noise_for(recordings_[job.recording], job.seed));
           f = prefixed(event_features(sims[i], recordings_[job.recording].nominal), job.recording);
         }
@@ -1064,7 +1065,10 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
   const json finest_grid = set_grid(finest, stated_grid, kFinestPerEdge);
   if (!finest_grid.is_null()) {
     const Features reference = search.evaluate({finest}, "numerics: finest contact grid").front();
-    for (int per_edge = 2; per_edge <= kFinestPerEdge; per_edge *= 2) {
+    if (Target::failed(reference))
+      d.notes.push_back(fmt::format("numerics: the finest contact grid {} did not run (time step?); the grid is not "
+                                    "checked", finest_grid.dump()));
+    for (int per_edge = 2; per_edge <= kFinestPerEdge && !Target::failed(reference); per_edge *= 2) {
       GridCheck check;
       check.reference = finest_grid.dump();
       const Target scale = make_target(recordings, {ensemble_runs}, search, HeldOutRule{}).with_recorded(reference);
@@ -1178,6 +1182,9 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
         candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
                                                   options.ensemble, options.table_gain_sd),
                                     fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        if (std::any_of(candidate_runs.begin(), candidate_runs.end(), Target::failed))
+          d.notes.push_back(fmt::format("round {}: {} = {} did not run (time step?): not accepted", round + 1,
+                                        candidates[i].name, format_value(candidates[i], fits[i].value)));
         // The statistics are means over the perturbed members, not the seed-1 run the value was
         // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
         const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);

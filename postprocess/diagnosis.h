@@ -72,6 +72,9 @@ struct FeatureValue {
   bool present = true;  // false: an event simulations have that the recording lacks (value unused)
 };
 using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.amplitude" -> value
+// The only key of a failed simulation's features: a model that does not run fits nothing (its
+// events are not merely absent).
+inline const std::string kFailedSimulation = "simulation_failed";
 // Features of every body of `recording`, analysed with `analysis_nominal`'s
 // geometry and noise thresholds (the recording's nominal, for both sides).
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal);

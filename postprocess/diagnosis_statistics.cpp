@@ -78,11 +78,14 @@ double existence_z(int agree, int members) {
 
 // ------------------------------------------------------------------ Target
 
+bool Target::failed(const Features& sim) { return sim.count(kFailedSimulation) > 0; }
+
 bool Target::compares_value(const std::string& name, const FeatureValue& f) const {
   return f.present && dof.at(name) >= kMinScatterDof;
 }
 
 double Target::chi2(const Features& sim, bool held) const {
+  if (failed(sim)) return std::numeric_limits<double>::infinity();
   double sum = 0;
   for (const auto& [name, f] : recorded) {
     if (held_out.count(name) != static_cast<std::size_t>(held)) continue;
@@ -107,8 +110,11 @@ double Target::ensemble_mean(const std::string& name, const std::vector<Features
 double Target::ensemble_z(const std::string& name, const FeatureValue& f, const std::vector<Features>& members,
                           int skip) const {
   int m = 0, k = 0;
-  for (int j = 0; j < static_cast<int>(members.size()); ++j)
-    if (j != skip) ++m, k += members[j].count(name) > 0;
+  for (int j = 0; j < static_cast<int>(members.size()); ++j) {
+    if (j == skip) continue;
+    if (failed(members[j])) return std::numeric_limits<double>::infinity();
+    ++m, k += members[j].count(name) > 0;
+  }
   const double existence = f.event ? existence_z(f.present ? k : m - k, m) : 0.0;
   if (k == 0 || !compares_value(name, f)) return f.present ? existence : -existence;
   const double scatter = ensemble_var.at(name) * (1 + 1.0 / k);
@@ -234,6 +240,7 @@ double profile_sd(const std::vector<std::pair<double, double>>& points) {
   const auto [x0, y0] = points[best - 1];
   const auto [x1, y1] = points[best];
   const auto [x2, y2] = points[best + 1];
+  if (!std::isfinite(y0) || !std::isfinite(y2)) return signal::kNaN;  // a neighbour did not run
   const double a = ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0);
   return a > 0 ? 1 / std::sqrt(a) : signal::kNaN;
 }

@@ -57,6 +57,8 @@ struct Target {
   std::map<std::string, double> dof;           // degrees of freedom of ensemble_var (present members - 1, summed)
   std::set<std::string> held_out;
 
+  // Whether a simulation failed (kFailedSimulation): its chi2 and any ensemble's with it are infinite.
+  static bool failed(const Features& sim);
   // Whether a feature's value is compared: recorded, with a scatter known (dof >= kMinScatterDof).
   bool compares_value(const std::string& name, const FeatureValue& f) const;
   // One simulation against the recording: the sum of z^2 over the fit set (held false) or the

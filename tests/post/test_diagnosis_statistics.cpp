@@ -189,6 +189,28 @@ TEST(DiagnosisStatistics, ADrawOfAModelWithRareEventsPassesTheNoiseLimit) {
               mean_chi2, mean_n);
 }
 
+TEST(DiagnosisStatistics, AModelThatDoesNotRunFitsNothing) {
+  // A failed simulation has no events; were it read as "every event absent" it would fit a
+  // recording better than the model that runs (bounded existence z against value z). Seen: a
+  // stiffness beyond the time step's critical value was accepted on case03 of the case set,
+  // and the improved model then failed to run.
+  std::mt19937 rng(29);
+  const FeatureModel model(rng);
+  std::vector<Features> members = model.ensemble(rng);
+  const Target t = target_with_held_out(model.recording(rng), {members});
+  const Features failed = {{kFailedSimulation, FeatureValue{}}};
+  EXPECT_TRUE(std::isinf(t.chi2(failed, false)));
+  EXPECT_TRUE(std::isfinite(t.chi2(members.front(), false)));
+  std::vector<Features> at = members;
+  at.back() = failed;
+  EXPECT_TRUE(std::isinf(t.ensemble_chi2(at)));
+  FittedCandidate f;
+  score(f, ensemble_drop(t, members, t, at, false), t.count(false));
+  EXPECT_FALSE(f.p_value < 0.01 && f.delta_bic > 0);  // never accepted
+  // Its profile point is no neighbour of a minimum: no standard error from it.
+  EXPECT_TRUE(std::isnan(profile_sd({{0.0, t.chi2(failed, false)}, {0.5, 1.0}, {1.0, 3.0}})));
+}
+
 TEST(DiagnosisStatistics, TheUnexplainedFlagFiresOnARightModelAtItsFamilyWiseRate) {
   // Bonferroni: the two-sided normal quantile at 0.01 / 40 (A&S 26.2: z(1.25e-4) = 3.6623).
   EXPECT_NEAR(family_wise_z(0.01, 40), 3.6623, 1e-3);
