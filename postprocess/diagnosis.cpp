@@ -42,33 +42,45 @@ const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body 
 
 // ------------------------------------------------------------------ catalogue
 
+// `similar`: entries whose effects on the event features are much alike in rocking physics (a
+// softer contact and an inset edge both move the pivot inward; an off-axis centre of mass, a
+// short corner and a pitching table all make the rocking one-sided; the friction laws all
+// change slip). With an accepted effect the verdict names those that also improved the fit.
 const std::vector<CatalogueEntry> kCatalogue = {
     {"restitution", "interface", "interfaces[i].restitution",
      "the {} impacts lose a different share of their energy than assumed (restitution)"},
     {"contact_stiffness", "interface", "interfaces[i].contact_stiffness (table interface)",
-     "the {} contact is softer or stiffer than assumed"},
+     "the {} contact is softer or stiffer than assumed", {"edge_inset"}},
     {"interface_compliance", "interface", "interfaces[i].contact_stiffness (body-on-body interface)",
-     "the joint {} is more compliant (or stiffer) than assumed, e.g. a mortar or shim layer"},
+     "the joint {} is more compliant (or stiffer) than assumed, e.g. a mortar or shim layer", {"edge_inset"}},
     {"static_kinetic_friction", "interface", "interfaces[i].mu_s, mu_k (mu_k = r mu_s, friction_decay 0)",
-     "sliding friction at {} drops below the friction that holds the body at rest (mu_k < mu_s)"},
+     "sliding friction at {} drops below the friction that holds the body at rest (mu_k < mu_s)",
+     {"velocity_weakening", "friction"}},
     {"velocity_weakening", "interface", "interfaces[i].mu_s, mu_k, friction_decay = 5 s/m",
-     "friction at {} weakens gradually as the sliding speed grows"},
-    {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x"},
-    {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y"},
+     "friction at {} weakens gradually as the sliding speed grows", {"static_kinetic_friction", "friction"}},
+    {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x",
+     {"base_not_flat", "table_pitch"}},
+    {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y",
+     {"base_not_flat", "table_roll"}},
     {"vertical_table_motion", "table", "table_motion.z = the table's x acceleration times c",
-     "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)"},
+     "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)", {"table_gain"}},
     {"base_not_flat", "body", "bodies[name].base.corner_gaps: one corner short by |g| (g > 0: the corner named, < 0: its opposite)",
-     "the base of {} is not flat: one corner is short, so it stands on three and rocks across the diagonal"},
+     "the base of {} is not flat: one corner is short, so it stands on three and rocks across the diagonal",
+     {"com_offset_x", "com_offset_y"}},
     {"edge_inset", "body", "bodies[name].base.edge_inset",
-     "{} rocks on edges inset from its geometric base edges (worn, rounded or crushed edges: a narrower base)"},
+     "{} rocks on edges inset from its geometric base edges (worn, rounded or crushed edges: a narrower base)",
+     {"contact_stiffness", "interface_compliance"}},
     {"table_pitch", "table", "table_motion.pitch = the table's x acceleration times c (rad/s^2 per m/s^2)",
-     "the table pitched (turned about y) in step with its horizontal motion (no table rotation was recorded)"},
+     "the table pitched (turned about y) in step with its horizontal motion (no table rotation was recorded)",
+     {"com_offset_x"}},
     {"table_gain", "table", "table_motion.x.scale = g (the recorded table acceleration replayed times g)",
-     "the recorded table acceleration reads high or low against what the table did (accelerometer gain)"},
+     "the recorded table acceleration reads high or low against what the table did (accelerometer gain)",
+     {"vertical_table_motion"}},
     {"table_roll", "table", "table_motion.roll = the table's x acceleration times c (rad/s^2 per m/s^2)",
-     "the table rolled (turned about x) in step with its horizontal motion (no table rotation was recorded)"},
+     "the table rolled (turned about x) in step with its horizontal motion (no table rotation was recorded)",
+     {"com_offset_y"}},
     {"friction", "interface", "interfaces[i].mu_s (mu_k scaled with it)",
-     "friction at {} is higher or lower than stated"},
+     "friction at {} is higher or lower than stated", {"static_kinetic_friction", "velocity_weakening"}},
 };
 
 // The interface entry of `document` between lower and upper, created when
@@ -80,10 +92,15 @@ json& interface_entry(json& document, const std::string& lower, const std::strin
   return document["interfaces"].back();
 }
 
+// Catalogue entry `name`, or nullptr (the sensor candidates are not physics).
+const CatalogueEntry* catalogue_entry(const std::string& name) {
+  const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == name; });
+  return e == kCatalogue.end() ? nullptr : &*e;
+}
+
 // The plain words of catalogue entry `entry` about `subject` (an interface or body, quoted).
 std::string describe(const std::string& entry, const std::string& subject) {
-  const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == entry; });
-  return fmt::format(fmt::runtime(e->description), subject);
+  return fmt::format(fmt::runtime(catalogue_entry(entry)->description), subject);
 }
 
 json& body_entry(json& document, const std::string& name) {
@@ -862,6 +879,14 @@ std::string format_value(const Candidate& c, double v) {
   return c.unit.empty() ? fmt::format("{:.3g}", v) : fmt::format("{:.3g} {}", v, c.unit);
 }
 
+// The candidates of a similar catalogue entry that also improved an accepted effect's profile.
+std::string similar_words(const Effect& e) {
+  if (e.similar.empty()) return "";
+  std::vector<std::string> parts;
+  for (const auto& [name, drop] : e.similar) parts.push_back(fmt::format("{} (profile chi2 drop {:.1f})", name, drop));
+  return fmt::format(" Of similar signature, also improving the single-run profile but by less: {}.", fmt::join(parts, ", "));
+}
+
 std::string event_words(const Mismatch& m) {
   const std::size_t impact = m.feature.find(".impact");
   if (impact != std::string::npos)
@@ -1212,9 +1237,14 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     const bool sensor = best >= candidates.size();
     const FittedCandidate f = fits[best];
     std::vector<std::string> alike;
-    for (std::size_t i = 0; i < fits.size(); ++i)
-      if (i != best && profile_delta[i] > profile_delta[best] - kIndistinguishable && profile_delta[i] > 0)
-        alike.push_back(fits[i].candidate.name);
+    std::vector<std::pair<std::string, double>> similar;
+    const CatalogueEntry* entry = catalogue_entry(f.candidate.entry);
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+      if (i == best || profile_delta[i] <= 0) continue;
+      if (profile_delta[i] > profile_delta[best] - kIndistinguishable) alike.push_back(fits[i].candidate.name);
+      else if (entry && std::count(entry->similar.begin(), entry->similar.end(), fits[i].candidate.entry))
+        similar.push_back({fits[i].candidate.name, profile_delta[i]});
+    }
     if (sensor) {
       f.candidate.correct(measured[f.candidate.recording], f.value);
       target = make_target(measured, {ensemble_runs}, search, held);
@@ -1234,6 +1264,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
       e.candidates_tried = tried;
       e.round = round + 1;
       e.indistinguishable = alike;
+      e.similar = similar;
       e.verdict = f.candidate.measurement ? "measurement" : f.candidate.stated ? "recalibrated" : "missing physics";
       const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;
       e.far_off = f.candidate.stated && f.candidate.log_scale && (ratio > kFarOff || ratio < 1 / kFarOff);
@@ -1308,14 +1339,15 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
                             : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
                                                     : fmt::format("+- {:.2g}", f.standard_error);
     v += fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} candidates, "
-                     "held-out improvement {:.1f}.{}{}\n",
+                     "held-out improvement {:.1f}.{}{}{}\n",
                      e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
                                                                                       : "Missing physics",
                      f.candidate.description,
                      f.candidate.name, format_value(f.candidate, f.value), err, format_value(f.candidate, f.candidate.nominal),
                      f.chi2 + f.delta, f.chi2, f.delta_se, f.p_value, e.candidates_tried, f.held_out_delta,
                      e.far_off ? " FAR from the stated value: check the nominal." : "",
-                     e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")));
+                     e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")),
+                     similar_words(e));
   }
   const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
   if (noise_only && d.effects.empty())
@@ -1380,7 +1412,9 @@ json diagnosis_json(const Diagnosis& d) {
   out["effects"] = out["recalibrated"] = json::array();
   for (const Effect& e : d.effects) {
     json j = fitted(e.fit);
-    j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable},
+    json similar = json::array();
+    for (const auto& [name, drop] : e.similar) similar.push_back({{"candidate", name}, {"profile_delta_chi2", drop}});
+    j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable}, {"similar_signature", similar},
               {"candidates_tried", e.candidates_tried}, {"round", e.round}});
     if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
     out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);

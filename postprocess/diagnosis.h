@@ -28,6 +28,7 @@ struct CatalogueEntry {
   std::string scope;         // "interface", "body" or "table": one candidate per interface, per body, or one
   std::string fields;        // the scenario fields that represent the parameter
   std::string description;   // plain words, {} = the interface or body
+  std::vector<std::string> similar;  // entries with much the same signature in the event features (symmetric)
 };
 const std::vector<CatalogueEntry>& catalogue();
 
@@ -134,6 +135,7 @@ struct Effect {               // an accepted candidate
   std::string verdict;        // "recalibrated", "missing physics" or "measurement"
   bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
   std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
+  std::vector<std::pair<std::string, double>> similar;  // candidates of a similar entry that also helped: profile drop
   int candidates_tried = 0;   // counted in the Holm correction
   int round = 0;              // the search round that accepted it (1 = first)
 };
