@@ -131,6 +131,13 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   EXPECT_EQ(d.effects.front().verdict, "missing physics");
   EXPECT_NEAR(d.effects.front().fit.value, 0.015, 0.003);
   EXPECT_NEAR(d.improved["bodies"][0]["base"]["edge_inset"].get<double>(), d.effects.front().fit.value, 1e-12);
+  // A softer contact also moves the pivot inward: the verdict says it helped too (its profile
+  // dropped 66.8 against the inset's more, measured), in words and in the JSON.
+  const auto& similar = d.effects.front().similar;
+  EXPECT_TRUE(std::any_of(similar.begin(), similar.end(),
+                          [](const auto& s) { return s.first == "contact_stiffness[table/block]" && s.second > 0; }));
+  EXPECT_NE(d.verdict.find("Of similar signature"), std::string::npos);
+  EXPECT_EQ(diagnosis::diagnosis_json(d)["effects"][0]["similar_signature"].size(), similar.size());
 }
 
 // One corner short: released onto its +x edge, the block stands on the +x -y corner alone
