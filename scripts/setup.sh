@@ -13,7 +13,7 @@ PACKAGES=(
   libnlopt-cxx-dev libliquid-dev libcli11-dev nlohmann-json3-dev libfmt-dev zlib1g-dev
   libmujoco-dev  # used only by bench/ (MuJoCo 2.2.2, the peer in bench/time_to_accuracy.sh)
   python3-h5py python3-numpy
-  paraview xvfb xauth chromium
+  paraview xvfb xauth x11-utils chromium
 )
 
 # pvpython renders the ParaView series (postprocess/render_frame.py). Debian 12's
