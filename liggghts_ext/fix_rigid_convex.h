@@ -131,6 +131,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
 
   void parse(int narg, char **arg, std::string &scene_file, freestand::SceneDefaults &defaults);
   void build_templates();
+  void assign_interface_laws();
   void create_bodies();
   void check_time_step();
   void table_contact(int i);
