@@ -35,6 +35,7 @@ const double kMinDuration = 0.5;   // s: a shorter record holds too few events t
 const int kMinSamples = 50;
 const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
                                       // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
+const double kMinRest = 1.0;       // s: the shortest rest whose slope counts towards a drift (rest_drift)
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
 const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
@@ -492,7 +493,13 @@ std::vector<bool> at_rest(const std::vector<double>& time, const std::vector<ana
   return rest;
 }
 
-// Pooled within-run slope of y over the runs of samples at rest (s.d. from the noise).
+// Pooled within-run slope of y over the runs of samples at rest (s.d. from the noise), of runs
+// at least kMinRest long. A sensor drifts slowly; in a short rest a body is still settling (an
+// ensemble member's 1 mrad initial tilt falls back in about 0.05 s; the last small impacts of
+// a rocking episode), and the 0.05-0.1 s rests between the rocks of the table-pitch test gave
+// "drifts" of 30-60 mrad/s, which extrapolated over the record became 0.1 rad. A transient of
+// amplitude A and length tau biases the slope of a run of length L by about 6 A tau / L^2:
+// for A = 1 noise s.d. and tau = 0.05 s, 1.2 s.d. of the slope at L = 1 s (200 Hz).
 std::pair<double, double> rest_drift(const std::vector<double>& time, const std::vector<double>& y,
                                      const std::vector<bool>& rest, double noise) {
   double sxy = 0, sxx = 0;
@@ -503,7 +510,7 @@ std::pair<double, double> rest_drift(const std::vector<double>& time, const std:
     int n = 0;
     for (std::size_t k = first; k < last; ++k)
       if (std::isfinite(y[k])) st += time[k], sy += y[k], ++n;
-    if (n >= 3)
+    if (n >= 3 && time[last - 1] - time[first] >= kMinRest)
       for (std::size_t k = first; k < last; ++k)
         if (std::isfinite(y[k])) sxy += (time[k] - st / n) * (y[k] - sy / n), sxx += std::pow(time[k] - st / n, 2);
     first = last + 1;
@@ -512,16 +519,20 @@ std::pair<double, double> rest_drift(const std::vector<double>& time, const std:
   return {sxy / sxx, noise / std::sqrt(sxx)};
 }
 
-std::vector<MeasurementIssue> measurement_issues(const Recording& rec, const Recording& sim, std::vector<ChannelDivergence>& divergence) {
+// The significant drifts at rest of `rec`'s channels against `sim`, a simulation of it: the slope
+// of recorded minus simulated where both rest, which the model cannot make. Not of the recorded
+// channel alone: that also drifts physically at rest (elastic tilt under the shaking table,
+// settling, a vertically moving table carrying the body), and on the case set, which has no
+// drift, it reported one in 7 of 26 recordings.
+std::vector<MeasurementIssue> rest_drifts(const Recording& rec, std::size_t recording, const Recording& sim) {
   std::vector<MeasurementIssue> out;
   const analysis::AnalysisParameters p = parameters_for(rec.nominal);
-  const double dt = sample_step(rec.time), duration = rec.time.back() - rec.time.front();
-  std::vector<AnalysedBody> bodies = analyse_recording(rec);
-  // The simulation's modes by the recording's thresholds: a drift is sought where both rest.
+  const double duration = rec.time.back() - rec.time.front();
+  // The simulation's modes by the recording's thresholds.
   Recording sim_as_recorded = sim;
   sim_as_recorded.nominal = rec.nominal;
   const std::vector<AnalysedBody> simulated_bodies = analyse_recording(sim_as_recorded);
-  for (const AnalysedBody& body : bodies) {
+  for (const AnalysedBody& body : analyse_recording(rec)) {
     std::vector<bool> rest = at_rest(body.motion.time, body.summary.modes);
     for (const AnalysedBody& s : simulated_bodies)
       if (s.name == body.name) {
@@ -532,46 +543,60 @@ std::vector<MeasurementIssue> measurement_issues(const Recording& rec, const Rec
       const std::string name = body.name + "." + channel_names()[c];
       const RecordingChannel* simulated = sim.find(name);
       if (body.motion.channels[c].empty() || !simulated) continue;
+      const double noise = c <= analysis::kTwist ? p.angle_noise : p.length_noise;
+      std::vector<double> difference(body.motion.time.size());
+      for (std::size_t k = 0; k < difference.size(); ++k)
+        difference[k] = body.motion.channels[c][k] - signal::interpolate(sim.time, simulated->values, body.motion.time[k]);
+      const auto [drift, drift_sd] = rest_drift(body.motion.time, difference, rest, noise);
+      if (!(std::isfinite(drift_sd) && std::abs(drift) > 4 * drift_sd && std::abs(drift) * duration > 4 * noise)) continue;
+      MeasurementIssue m;
+      m.channel = name, m.recording = recording, m.drift = drift, m.drift_significant = true;
+      m.text = fmt::format("{}: {} drifts by {:.3g} per s at rest", rec.path, name, drift);
+      out.push_back(m);
+    }
+  }
+  return out;
+}
+
+// Suspected sensor delays and gains of `rec`'s channels against `sim`, a simulation of it, and
+// where each channel diverges from it.
+std::vector<MeasurementIssue> measurement_issues(const Recording& rec, std::size_t recording, const Recording& sim,
+                                                std::vector<ChannelDivergence>& divergence) {
+  std::vector<MeasurementIssue> out;
+  const analysis::AnalysisParameters p = parameters_for(rec.nominal);
+  const double dt = sample_step(rec.time);
+  for (const AnalysedBody& body : analyse_recording(rec)) {
+    for (int c = 0; c < analysis::kChannelCount; ++c) {
+      const std::string name = body.name + "." + channel_names()[c];
+      const RecordingChannel* simulated = sim.find(name);
+      if (body.motion.channels[c].empty() || !simulated) continue;
       comparison::ComparisonParameters cp;
       cp.noise = c <= analysis::kTwist ? p.angle_noise : p.length_noise;
       const comparison::ChannelComparison cc =
           comparison::compare_channel(rec.time, body.motion.channels[c], sim.time, simulated->values, cp);
       divergence.push_back({name, cc.divergence_time});
+      // A channel that hardly moves (peak below 20 noise s.d.) has no shape to correlate.
+      if (!(cc.peak_recorded > 20 * cp.noise)) continue;
       MeasurementIssue m;
-      m.channel = name;
+      m.channel = name, m.recording = recording;
       // Delay and gain on the segment before divergence, where the physics still agrees (after it,
       // a physics mismatch would pass for a gain); at least 20 samples.
       const double until = std::max(std::isfinite(cc.divergence_time) ? cc.divergence_time : rec.time.back(),
                                     rec.time.front() + 20 * dt);
-      // A channel that hardly moves (peak below 20 noise s.d.) has no shape to correlate.
-      if (cc.peak_recorded > 20 * cp.noise) {
-        const signal::IndexRange r = signal::index_range(rec.time, rec.time.front(), until);
-        const std::vector<double> t(rec.time.begin() + r.first, rec.time.begin() + r.last);
-        const std::vector<double> y(body.motion.channels[c].begin() + r.first, body.motion.channels[c].begin() + r.last);
-        const comparison::OffsetGain og =
-            comparison::offset_and_gain(comparison::align(t, y, sim.time, simulated->values), sim.time, simulated->values, cp);
-        m.delay = og.offset, m.gain = og.gain, m.gain_sd = og.gain_sd, m.bias = og.bias, m.correlation = og.correlation;
-        // Worth a candidate: a lag of two samples or more (the parabolic sub-sample lag of a noisy
-        // correlation is good to a fraction of a sample), a gain off by more than 3 % and 4 s.d.,
-        // with shapes that agree (correlation 0.95). A physics mismatch before the divergence
-        // also shows as a lag or gain: the candidates' competition on the events decides.
-        m.delay_suspected = std::abs(m.delay) >= 2 * dt && m.correlation >= 0.95;
-        m.gain_suspected = std::isfinite(m.gain) && std::abs(m.gain - 1) > std::max(4 * m.gain_sd, 0.03) &&
-                           m.correlation >= 0.95;
-      }
-      // A sensor drift is what the recording has and the model cannot: the slope of recorded minus
-      // simulated, where both rest. The recorded channel alone also drifts physically at rest
-      // (elastic tilt under the shaking table, settling): on the case set, which has no drift,
-      // it reported one in 7 of 26 recordings.
-      std::vector<double> difference(body.motion.time.size());
-      for (std::size_t k = 0; k < difference.size(); ++k)
-        difference[k] = body.motion.channels[c][k] - signal::interpolate(sim.time, simulated->values, body.motion.time[k]);
-      const auto [drift, drift_sd] = rest_drift(body.motion.time, difference, rest, cp.noise);
-      m.drift = drift;
-      m.drift_significant = std::isfinite(drift_sd) && std::abs(drift) > 4 * drift_sd &&
-                            std::abs(drift) * duration > 4 * cp.noise;
-      if (m.drift_significant) m.text = fmt::format("{} drifts by {:.3g} per s at rest", name, m.drift);
-      if (m.drift_significant || m.delay_suspected || m.gain_suspected) out.push_back(m);
+      const signal::IndexRange r = signal::index_range(rec.time, rec.time.front(), until);
+      const std::vector<double> t(rec.time.begin() + r.first, rec.time.begin() + r.last);
+      const std::vector<double> y(body.motion.channels[c].begin() + r.first, body.motion.channels[c].begin() + r.last);
+      const comparison::OffsetGain og =
+          comparison::offset_and_gain(comparison::align(t, y, sim.time, simulated->values), sim.time, simulated->values, cp);
+      m.delay = og.offset, m.gain = og.gain, m.gain_sd = og.gain_sd, m.bias = og.bias, m.correlation = og.correlation;
+      // Worth a candidate: a lag of two samples or more (the parabolic sub-sample lag of a noisy
+      // correlation is good to a fraction of a sample), a gain off by more than 3 % and 4 s.d.,
+      // with shapes that agree (correlation 0.95). A physics mismatch before the divergence
+      // also shows as a lag or gain: the candidates' competition on the events decides.
+      m.delay_suspected = std::abs(m.delay) >= 2 * dt && m.correlation >= 0.95;
+      m.gain_suspected = std::isfinite(m.gain) && std::abs(m.gain - 1) > std::max(4 * m.gain_sd, 0.03) &&
+                         m.correlation >= 0.95;
+      if (m.delay_suspected || m.gain_suspected) out.push_back(m);
     }
   }
   return out;
@@ -605,10 +630,30 @@ RecordingChannel& channel_of(Recording& r, const std::string& name) {
   throw InputError(fmt::format("{}: no channel '{}'", r.path, name));
 }
 
-// The channel with a drift at rest removed: y - drift (t - t0).
-void remove_drift(Recording& r, const MeasurementIssue& m) {
-  RecordingChannel& c = channel_of(r, m.channel);
-  for (std::size_t k = 0; k < c.values.size(); ++k) c.values[k] -= m.drift * (r.time[k] - r.time.front());
+// `slope` (t - t0) added to a channel of r: a drift put into a simulation, or (negative) taken
+// out of a recording.
+void add_drift(Recording& r, const std::string& channel, double slope, double t0) {
+  RecordingChannel& c = channel_of(r, channel);
+  for (std::size_t k = 0; k < c.values.size(); ++k) c.values[k] += slope * (r.time[k] - t0);
+}
+
+// The drifts at rest of the recordings against a model's noise-free runs (one per recording).
+std::vector<MeasurementIssue> drifts_against(const std::vector<Recording>& recordings, const std::vector<Recording>& runs) {
+  std::vector<MeasurementIssue> out;
+  for (std::size_t r = 0; r < recordings.size(); ++r)
+    for (MeasurementIssue& m : rest_drifts(recordings[r], r, runs[r])) out.push_back(std::move(m));
+  return out;
+}
+
+// A drift against the model as given that the improved model does not have was physics.
+void note_explained_drifts(const std::vector<MeasurementIssue>& given, const std::vector<MeasurementIssue>& improved,
+                           std::vector<std::string>& notes) {
+  for (const MeasurementIssue& g : given)
+    if (std::none_of(improved.begin(), improved.end(), [&](const MeasurementIssue& m) {
+          return m.recording == g.recording && m.channel == g.channel;
+        }))
+      notes.push_back(fmt::format("against the model as given, {}; the improved model explains it: physics, not a "
+                                  "sensor's drift", g.text));
 }
 
 // Sensor delay and gain of one channel as candidates (docs/diagnose.md): a delay shifts the
@@ -665,6 +710,11 @@ class Search {
   // several); a failed simulation's hold kFailedSimulation alone.
   // With `raw` (the model as given or as improved, with its ensemble), every simulation must run
   // and the first raw.size() are also kept as they ran (noise-free).
+  // Each run is compared with its recording as that model with its own sensor drifts: a drift
+  // at rest of the recording against the run (rest_drifts) is added to the run. Not taken out
+  // of the recording once, against the model as given: what a candidate explains (a vertically
+  // moving table carrying a resting body) would be corrected away before it was tried, and the
+  // right candidate fail against the corrected record (docs/diagnose.md, study 3).
   std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {
     std::vector<Features> out;
     const std::size_t chunk = std::max(1, options_.jobs) * 2;
@@ -685,6 +735,9 @@ class Search {
         if (failures[i]) {
           f[kFailedSimulation] = {};
         } else {
+          const Recording& recorded = recordings_[job.recording];
+          for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sims[i]))
+            add_drift(sims[i], m.channel, m.drift, recorded.time.front());
           add_measurement_noise(sims[i], noise_for(recordings_[job.recording], job.seed));
           f = prefixed(event_features(sims[i], recordings_[job.recording].nominal), job.recording);
         }
@@ -1110,14 +1163,15 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     }
   }
 
-  // 2. Measurement: drift at rest removed at once; suspected delays and gains become candidates.
-  std::vector<Recording> measured = recordings;
+  // 2. Measurement: suspected delays and gains become candidates. Drifts at rest are each run's
+  // own (Search::run); those against the model as given are kept to say which the improved
+  // model explains.
+  std::vector<Recording> measured = recordings;  // corrected for the accepted sensor candidates
   std::vector<Candidate> sensor_candidates;
   for (std::size_t r = 0; r < recordings.size(); ++r)
-    for (const MeasurementIssue& m : measurement_issues(recordings[r], nominal_runs[r], d.divergence)) {
-      if (m.drift_significant) remove_drift(measured[r], m), d.measurement.push_back(m);
+    for (const MeasurementIssue& m : measurement_issues(recordings[r], r, nominal_runs[r], d.divergence))
       for (Candidate& c : measurement_candidates(m, r)) sensor_candidates.push_back(std::move(c));
-    }
+  const std::vector<MeasurementIssue> given_drifts = drifts_against(recordings, nominal_runs);
   // Held out: the last third of the recordings (at least one), or with one recording the later
   // half of the events. More than one when there are several: an effect fitted to the chance
   // features of one held-out recording could still pass it.
@@ -1288,11 +1342,17 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
                           Target::ensemble_mean(name, nominal_members, -1), Target::ensemble_mean(name, final_members, -1),
                           target.ensemble_z(name, f, nominal_members, -1), target.ensemble_z(name, f, final_members, -1),
                           target.held_out.count(name) > 0});
-  d.recorded = measured;
   d.z_threshold = options.z_threshold;
   d.simulated_nominal = nominal_runs;
   d.simulated_final = nominal_runs;
   if (!d.effects.empty()) search.run(ensemble_jobs(base, recordings, 0, 0), "improved model", &d.simulated_final);
+  // The drifts reported are the improved model's; the recording is shown less them.
+  const std::vector<MeasurementIssue> drifts = drifts_against(recordings, d.simulated_final);
+  note_explained_drifts(given_drifts, drifts, d.notes);
+  d.measurement.insert(d.measurement.begin(), drifts.begin(), drifts.end());
+  d.recorded = measured;
+  for (const MeasurementIssue& m : drifts)
+    add_drift(d.recorded[m.recording], m.channel, -m.drift, d.recorded[m.recording].time.front());
   // Left unexplained: features beyond what chance allows over all of them (the 3 s.d. flag of
   // the mismatch report fires on one of 70 features one time in five with a right model).
   d.unexplained = target.mismatches(

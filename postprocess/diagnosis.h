@@ -81,16 +81,18 @@ inline const std::string kFailedSimulation = "simulation_failed";
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal);
 
 // A measurement issue of one channel: recorded ~ gain * simulated(t - delay) + bias + drift t.
-// The estimates come from the comparison with the nominal run; drift at rest is
-// accepted at once (physics does not move a body at rest), a delay or gain only
-// as a candidate that beats every physics candidate on the event features.
+// A drift at rest belongs to each simulation it was measured against (added to it where
+// significant; reported against the final model); a delay or gain, estimated against the
+// nominal run, is accepted only as a candidate that beats every physics candidate on the
+// event features.
 struct MeasurementIssue {
   std::string channel;        // "block.rock_x"
+  std::size_t recording = 0;  // index of the recording it was measured on
   double delay = 0, gain = 1, gain_sd = 0, bias = 0, drift = 0;  // s, -, -, channel units, units/s
   double correlation = 0;
   bool delay_suspected = false, gain_suspected = false;  // worth a candidate
   bool delay_significant = false, gain_significant = false, drift_significant = false;  // accepted
-  int round = 0;              // the search round that accepted it (0: drift, accepted before the search)
+  int round = 0;              // the search round that accepted it (0: a drift, against the final model)
   std::string text;           // plain words
 };
 

@@ -256,16 +256,28 @@ TEST(Diagnosis, ReportsATableThatLaggedItsCommand) {
   EXPECT_TRUE(d.effects.empty());
 }
 
-// A one-sine table acceleration pulse, amplitude * sin(2 pi f t) for 0 <= t <= 1/f, then rest,
-// written at 1 kHz: the table travels amplitude / (2 pi f^2) and stops there.
-json pulse_table(const test::TempDir& dir, double amplitude, double frequency, double duration) {
+// One-sine table acceleration pulses, amplitude * sin(2 pi f (t - start)) for start <= t <=
+// start + 1/f, else rest, written at 1 kHz: each carries the table amplitude / (2 pi f^2) and
+// stops it there.
+struct Pulse {
+  double start, amplitude, frequency;  // s, m/s^2, Hz
+};
+
+json pulses_table(const test::TempDir& dir, const std::string& name, const std::vector<Pulse>& pulses, double duration) {
   std::string record = "t,ax\n";
   for (int k = 0; k <= static_cast<int>(std::round(duration * 1e3)); ++k) {
-    const double t = k * 1e-3, a = t <= 1 / frequency ? amplitude * std::sin(2 * M_PI * frequency * t) : 0.0;
+    const double t = k * 1e-3;
+    double a = 0;
+    for (const Pulse& p : pulses)
+      if (t >= p.start && t <= p.start + 1 / p.frequency) a += p.amplitude * std::sin(2 * M_PI * p.frequency * (t - p.start));
     record += fmt::format("{:.3f},{:.10g}\n", t, a);
   }
-  const std::string path = dir.write(fmt::format("pulse_{:+g}.csv", amplitude), record);
+  const std::string path = dir.write(name + ".csv", record);
   return {{"x", {{"record", path}, {"format", "csv"}, {"column", "ax"}, {"units", "m/s^2"}}}};
+}
+
+json pulse_table(const test::TempDir& dir, double amplitude, double frequency, double duration) {
+  return pulses_table(dir, fmt::format("pulse_{:+g}", amplitude), {{0.0, amplitude, frequency}}, duration);
 }
 
 // `document` with its table turned in step with its x motion by the diagnosis candidate `entry`
@@ -280,12 +292,13 @@ json driven_table(json document, const std::string& entry, double c) {
   return document;
 }
 
-json standing_on_pulse(const test::TempDir& dir, double amplitude, double frequency, double duration) {
+// The block standing upright on a table moved by `table` for `duration` s.
+json standing_on(const json& table, double duration) {
   json truth = rocking_scenario(0.3);
   truth["bodies"][0]["position"] = {0.0, 0.0, 0.0};
   truth["bodies"][0]["orientation"] = {1.0, 0.0, 0.0, 0.0};
   truth["simulation"]["duration"] = duration;
-  truth["table_motion"] = pulse_table(dir, amplitude, frequency, duration);
+  truth["table_motion"] = table;
   return truth;
 }
 
@@ -294,7 +307,7 @@ json standing_on_pulse(const test::TempDir& dir, double amplitude, double freque
 // model replays it) and the rock channels are kept, as in rocking_recording.
 Recording pulse_recording(const test::TempDir& dir, double amplitude, const std::string& entry, double c,
                           unsigned seed) {
-  const json truth = driven_table(standing_on_pulse(dir, amplitude, 2.5, 3.0), entry, c);
+  const json truth = driven_table(standing_on(pulse_table(dir, amplitude, 2.5, 3.0), 3.0), entry, c);
   Recording r = synthetic_recording(truth, dir / fmt::format("truth_{}", seed), {1e-3, 5e-4, seed});
   std::vector<RecordingChannel> kept;
   for (const RecordingChannel& k : r.channels)
@@ -335,6 +348,48 @@ TEST(Diagnosis, NamesAndRecoversTablePitch) {
   EXPECT_EQ(d.effects.front().verdict, "missing physics");
   EXPECT_NEAR(d.effects.front().fit.value, c, 0.015);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);  // the -x run leans the other way, as predicted
+}
+
+// The table also moves vertically, a_z = k a_x (k = 0.2), which the recordings do not state. A
+// slow one-sine pulse (1 m/s^2 at 0.5 Hz, far below the block's uplift at 3.3 m/s^2) carries the
+// table 0.64 m along x, and so 0.13 m up, while the block stands on it; a 2.5 Hz pulse of
+// 3.6 m/s^2 then rocks it (with 0.72 m/s^2 of vertical shaking). Measured against the model,
+// the standing block's uplift rises with the table at k 0.32 m/s (its mean speed along x): a
+// sensor drift would look the same at rest. It is physics here: the vertical candidate explains
+// it, and the diagnosis must name it, not correct the recording for a drift first and then find
+// the right candidate failing the held-out run (docs/diagnose.md, study 3, case14). Two runs, +x
+// then -x (the table rises, then sinks), the second held out. Tolerance 0.05 (a quarter of k):
+// the last refinement's spacing is 0.02 (a bracket of 0.27 of the +-0.5 range cut in fifths
+// twice); the rest is the trade-off with the table gain, which scales the rocking pulse as k's
+// vertical shaking does. A drift left against the improved model is the carry of its error in
+// k: at most 0.05 x 0.32 m/s.
+TEST(Diagnosis, TakesAVerticalTableCarryForPhysicsNotForADrift) {
+  test::TempDir dir;
+  const double k = 0.2;
+  std::vector<Recording> recordings;
+  for (double sign : {1.0, -1.0}) {
+    const json table = pulses_table(dir, fmt::format("carry_{:+g}", sign), {{0.0, sign, 0.5}, {2.2, 3.6 * sign, 2.5}}, 4.0);
+    const json truth = driven_table(standing_on(table, 4.0), "vertical_table_motion", k);
+    Recording r = synthetic_recording(truth, dir / fmt::format("truth_{:+g}", sign), {1e-3, 5e-4, sign > 0 ? 31u : 32u});
+    std::vector<RecordingChannel> kept;
+    for (const RecordingChannel& c : r.channels)
+      if (c.name == "table_ax" || c.name == "block.rock_x" || c.name == "block.rock_y" || c.name == "block.uplift")
+        kept.push_back(c);
+    r.channels = kept;
+    r.path = fmt::format("carry_{:+g}", sign);
+    EXPECT_EQ(r.nominal.dump().find("\"z\""), std::string::npos);  // concealed: no vertical table motion stated
+    recordings.push_back(r);
+  }
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), recordings, o);
+  std::cerr << d.verdict;
+  ASSERT_FALSE(d.effects.empty());
+  EXPECT_EQ(d.effects.front().fit.candidate.entry, "vertical_table_motion");
+  EXPECT_NEAR(d.effects.front().fit.value, k, 0.05);
+  EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
+  for (const diagnosis::MeasurementIssue& m : d.measurement)  // the carry is explained, not corrected away
+    if (m.drift_significant) EXPECT_LT(std::abs(m.drift), 0.05 * 0.32) << m.text;
 }
 
 TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
