@@ -49,7 +49,7 @@ const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body 
 // change slip). With an accepted effect the verdict names those that also improved the fit.
 const std::vector<CatalogueEntry> kCatalogue = {
     {"restitution", "interface", "interfaces[i].restitution",
-     "the {} impacts lose a different share of their energy than assumed (restitution)"},
+     "the {} impacts lose a different share of their energy than assumed (restitution)", {}},
     {"contact_stiffness", "interface", "interfaces[i].contact_stiffness (table interface)",
      "the {} contact is softer or stiffer than assumed", {"edge_inset"}},
     {"interface_compliance", "interface", "interfaces[i].contact_stiffness (body-on-body interface)",
