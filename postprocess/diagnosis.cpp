@@ -735,11 +735,13 @@ class Search {
         if (failures[i]) {
           f[kFailedSimulation] = {};
         } else {
+          // Against the recording as given: a sensor gain accepted later scales its drift too
+          // (a second-order error, not corrected).
           const Recording& recorded = recordings_[job.recording];
           for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sims[i]))
             add_drift(sims[i], m.channel, m.drift, recorded.time.front());
-          add_measurement_noise(sims[i], noise_for(recordings_[job.recording], job.seed));
-          f = prefixed(event_features(sims[i], recordings_[job.recording].nominal), job.recording);
+          add_measurement_noise(sims[i], noise_for(recorded, job.seed));
+          f = prefixed(event_features(sims[i], recorded.nominal), job.recording);
         }
         out.push_back(std::move(f));
       }

@@ -217,6 +217,7 @@ TEST(Diagnosis, MeasuresASensorDriftOnlyWhereThereIsOne) {
   EXPECT_TRUE(drifts(clean).empty());
   const std::vector<diagnosis::MeasurementIssue> found = drifts(drifting);
   ASSERT_EQ(found.size(), 1u);
+  std::cerr << found.front().text << "\n";
   EXPECT_EQ(found.front().channel, "block.rock_x");
   EXPECT_NEAR(found.front().drift, 0.001, 3e-4);
 }
