@@ -38,7 +38,7 @@ const double kIndistinguishable = 2;  // chi2 difference below which two fits ar
 const double kMinRest = 1.0;       // s: the shortest rest whose slope counts towards a drift (rest_drift)
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
-const std::size_t kAttempts = 3;   // best candidates refined and tested per round, in order of their chi2 drop
+const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ catalogue
@@ -1227,9 +1227,10 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     for (const Candidate& c : sensor_candidates)
       fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available,
                                 target.count(false)));
-    // In order of the chi2 drop, the first candidates (at most kAttempts) are refined and tested;
-    // the first that passes is accepted. A physics candidate is refined by two rounds of 4 points
-    // inside the bracket around its minimum.
+    // In order of the chi2 drop, candidates are refined and tested until kAttempts physics ones
+    // have been (sensor candidates run nothing and do not count); the first that passes is
+    // accepted. A physics candidate is refined by two rounds of 4 points inside the bracket
+    // around its minimum.
     std::vector<std::size_t> order(fits.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fits[a].delta > fits[b].delta; });
@@ -1237,9 +1238,11 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     std::vector<double> profile_delta(fits.size());  // chi2 drops of the profiles (the same scatter for all)
     for (std::size_t i = 0; i < fits.size(); ++i) profile_delta[i] = fits[i].delta;
     std::vector<Features> candidate_runs;  // the ensemble at the candidate tested last
-    for (std::size_t rank = 0; rank < std::min<std::size_t>(kAttempts, order.size()) && best == fits.size(); ++rank) {
+    int attempts = 0;
+    for (std::size_t rank = 0; rank < order.size() && attempts < kAttempts && best == fits.size(); ++rank) {
       const std::size_t i = order[rank];
       if (fits[i].delta <= 0) break;
+      attempts += i < candidates.size();
       for (int refine = 0; refine < 2 && i < candidates.size(); ++refine) {
         Profile& p = profiles[i];
         const double u = to_scaled(candidates[i], fits[i].value);

@@ -92,7 +92,10 @@ double Target::chi2(const Features& sim, bool held) const {
     const auto s = sim.find(name);
     const bool has = s != sim.end();
     if (f.event) sum += std::pow(existence_z(has == f.present, 1), 2);
-    if (has && compares_value(name, f)) sum += std::pow((s->second.value - f.value) / sd.at(name), 2);
+    // The tails of the test's z (predictive_z): as a Gaussian z^2, one feature off by 200 s.d.
+    // outweighs forty off by 5, and the profiles would rank candidates by that one feature.
+    if (has && compares_value(name, f))
+      sum += std::pow(predictive_z(s->second.value - f.value, ensemble_var.at(name), dof.at(name), f.floor * f.floor), 2);
   }
   return sum;
 }
@@ -197,7 +200,6 @@ Target target_of(const Features& recorded, const std::vector<std::vector<Feature
     const double var = dof > 0 ? sum / dof : 0.0;
     t.ensemble_var[name] = var;
     t.dof[name] = dof;
-    t.sd[name] = std::sqrt(var + f.floor * f.floor);
   }
   return t;
 }

@@ -52,7 +52,6 @@ constexpr double kMinScatterDof = 2;
 // The recorded features with the scatter of each, and which are held out.
 struct Target {
   Features recorded;  // the recording's features, and (present false) events only simulations have
-  std::map<std::string, double> sd;            // sqrt(ensemble variance + floor^2): one run's scatter
   std::map<std::string, double> ensemble_var;  // variance about their mean of the members that have the feature
   std::map<std::string, double> dof;           // degrees of freedom of ensemble_var (present members - 1, summed)
   std::set<std::string> held_out;
@@ -62,8 +61,9 @@ struct Target {
   // Whether a feature's value is compared: recorded, with a scatter known (dof >= kMinScatterDof).
   bool compares_value(const std::string& name, const FeatureValue& f) const;
   // One simulation against the recording: the sum of z^2 over the fit set (held false) or the
-  // held-out set (true), z = (sim - recorded) / sd for a value, existence_z(agree, 1) for an
-  // event. For profiles, where the noise seed is common.
+  // held-out set (true), z = predictive_z(sim - recorded) with the members' scatter and the
+  // floor for a value (the tails of the few members' estimate), existence_z(agree, 1) for an event.
+  // For profiles, where the noise seed is common.
   double chi2(const Features& sim, bool held) const;
   // The mean of feature `name` over the members that have it, member `skip` left out (the
   // jackknife; -1: none). NaN when none has it.

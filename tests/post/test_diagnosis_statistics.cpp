@@ -127,9 +127,10 @@ TEST(DiagnosisStatistics, ADrawOfTheModelPassesTheNoiseLimitAtItsRate) {
   // The mean of chi2(40) is 40; its s.e. over the trials is 0.14: 5 % allowed for the same
   // conservatism (measured 38.8).
   EXPECT_NEAR(mean, kFeatures, 0.05 * kFeatures);
-  // What the ensemble mean and t replace: one run against the recording, scatter from 6 members,
-  // exceeds the limit most of the time (twice the variance, heavy tails; measured 95.5 %).
-  EXPECT_GT(beyond_single, kTrials / 2);
+  // What the ensemble mean replaces: one run against the recording (the profiles' chi2, with the
+  // same tails) has twice the variance and exceeds the limit tens of times more often than 1 %
+  // (measured 46 %; 95.5 % before it took the t tails): 20 % is far from both.
+  EXPECT_GT(beyond_single, kTrials / 5);
 }
 
 TEST(DiagnosisStatistics, AnEventsExistenceWeighsOnlyWhatTheMembersCanTell) {
