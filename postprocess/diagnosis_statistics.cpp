@@ -247,6 +247,8 @@ double profile_sd(const std::vector<std::pair<double, double>>& points) {
   return a > 0 ? 1 / std::sqrt(a) : signal::kNaN;
 }
 
+double secant_sd(double u0, double u, double drop) { return drop > 0 ? std::abs(u - u0) / std::sqrt(drop) : signal::kNaN; }
+
 // The curvature alone assumes the model fits the data; a misfit beyond the noise (chi2 per
 // degree of freedom above 1) means the data say less: the Birge ratio.
 double birge_ratio(double chi2, int features) {

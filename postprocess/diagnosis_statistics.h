@@ -112,6 +112,10 @@ void score(FittedCandidate& f, const Drop& drop, int n);
 // minimum: chi2 rises by 1 at one s.d. NaN when not convex.
 double profile_sd(const std::vector<std::pair<double, double>>& points);
 
+// Standard error (scaled units) from the parabola with its minimum at the fit u through the
+// model before it (u0), `drop` below: |u - u0| / sqrt(drop). NaN without a drop.
+double secant_sd(double u0, double u, double drop);
+
 // max(1, sqrt(chi2 / (n - 1))): a misfit beyond the noise widens a profile's s.d. by it.
 double birge_ratio(double chi2, int features);
 

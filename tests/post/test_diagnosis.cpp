@@ -42,6 +42,14 @@ json model(double restitution) {
           {"contact", {{"stiffness", kStiffness}, {"restitution", restitution}, {"mu", kMu}}}};
 }
 
+// The reported s.e. against the known truth: the error within 3 s.e. (99.7 % for a calibrated
+// s.e.), and the s.e. under a quarter of the truth (fine enough for the 25 % recovery target;
+// an s.e. as wide as the range would pass the first check by saying nothing).
+void expect_standard_error_covers(const diagnosis::FittedCandidate& fit, double truth) {
+  EXPECT_LT(std::abs(fit.value - truth), 3 * fit.standard_error) << fit.candidate.name << " = " << fit.value;
+  EXPECT_LT(fit.standard_error, 0.25 * std::abs(truth)) << fit.candidate.name;
+}
+
 // Only rock_x carries the motion; the other channels are dropped so that the
 // search stays small (restitution, stiffness, COM x and y) and the test fast.
 Recording rocking_recording(const json& truth, const test::TempDir& dir, unsigned seed) {
@@ -77,6 +85,7 @@ TEST(Diagnosis, NamesAndRecoversRestitution) {
   ASSERT_FALSE(d.effects.empty());
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "restitution");
   EXPECT_NEAR(d.effects.front().fit.value, 0.35, 0.05);
+  expect_standard_error_covers(d.effects.front().fit, 0.35);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
   EXPECT_FALSE(d.mismatches.empty());  // the model as given was located as wrong
   // The model as given is beyond the 99 % noise limit, the improved one within it (a right
@@ -112,6 +121,7 @@ TEST(Diagnosis, NamesAndRecoversCentreOfMassOffset) {
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "com_offset_x");
   EXPECT_EQ(d.effects.front().verdict, "missing physics");  // the nominal states no com
   EXPECT_NEAR(d.effects.front().fit.value, 0.012, 0.003);
+  expect_standard_error_covers(d.effects.front().fit, 0.012);
 }
 
 // Rounded edges: the block rocks on edges 15 mm inside its 100 mm half-width, so it rocks at a
@@ -130,6 +140,7 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "edge_inset");
   EXPECT_EQ(d.effects.front().verdict, "missing physics");
   EXPECT_NEAR(d.effects.front().fit.value, 0.015, 0.003);
+  expect_standard_error_covers(d.effects.front().fit, 0.015);
   EXPECT_NEAR(d.improved["bodies"][0]["base"]["edge_inset"].get<double>(), d.effects.front().fit.value, 1e-12);
   // A softer contact also moves the pivot inward: the verdict says it helped too (its profile
   // dropped 66.8 against the inset's more, measured), in words and in the JSON.
@@ -155,6 +166,7 @@ TEST(Diagnosis, NamesAndRecoversShortCorner) {
   ASSERT_FALSE(d.effects.empty());
   EXPECT_EQ(d.effects.front().fit.candidate.name, "base_not_flat[block:+x+y]");
   EXPECT_NEAR(d.effects.front().fit.value, 0.003, 0.001);
+  expect_standard_error_covers(d.effects.front().fit, 0.003);
 }
 
 // The model is the truth: nothing significant may be found.
@@ -348,6 +360,7 @@ TEST(Diagnosis, NamesAndRecoversTablePitch) {
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "table_pitch");
   EXPECT_EQ(d.effects.front().verdict, "missing physics");
   EXPECT_NEAR(d.effects.front().fit.value, c, 0.015);
+  expect_standard_error_covers(d.effects.front().fit, c);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);  // the -x run leans the other way, as predicted
 }
 
@@ -388,6 +401,7 @@ TEST(Diagnosis, TakesAVerticalTableCarryForPhysicsNotForADrift) {
   ASSERT_FALSE(d.effects.empty());
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "vertical_table_motion");
   EXPECT_NEAR(d.effects.front().fit.value, k, 0.05);
+  expect_standard_error_covers(d.effects.front().fit, k);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
   for (const diagnosis::MeasurementIssue& m : d.measurement)  // the carry is explained, not corrected away
     if (m.drift_significant) EXPECT_LT(std::abs(m.drift), 0.05 * 0.32) << m.text;
