@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <set>
 
@@ -1248,12 +1249,10 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     std::size_t best = fits.size();
     std::vector<double> profile_delta(fits.size());  // chi2 drops of the profiles (the same scatter for all)
     for (std::size_t i = 0; i < fits.size(); ++i) profile_delta[i] = fits[i].delta;
-    std::vector<Features> candidate_runs;  // the ensemble at the candidate tested last
-    int attempts = 0;
-    for (std::size_t rank = 0; rank < order.size() && attempts < kAttempts && best == fits.size(); ++rank) {
-      const std::size_t i = order[rank];
-      if (fits[i].delta <= 0) break;
-      attempts += i < candidates.size();
+    std::map<std::size_t, std::vector<Features>> tested;  // the ensemble at each physics candidate tested
+    // Refines candidate i and tests it on the ensemble (a physics candidate at its own value: chaos
+    // depends on the model) or, a sensor, with the recording corrected against the same ensemble.
+    auto test = [&](std::size_t i) {
       for (int refine = 0; refine < 2 && i < candidates.size(); ++refine) {
         Profile& p = profiles[i];
         const double u = to_scaled(candidates[i], fits[i].value);
@@ -1271,24 +1270,23 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
         fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available);
       }
       profile_delta[i] = fits[i].delta;
-      // A physics candidate is judged with the scatter at its own value too (chaos depends on the
-      // model): an ensemble there, the variances of both ensembles averaged.
       if (i < candidates.size()) {
-        candidate_runs = search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings,
-                                                  options.ensemble, options.table_gain_sd),
-                                    fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
-        if (std::any_of(candidate_runs.begin(), candidate_runs.end(), Target::failed))
+        const std::vector<Features>& runs = tested[i] =
+            search.run(ensemble_jobs(applied(base, candidates[i], fits[i].value), recordings, options.ensemble,
+                                     options.table_gain_sd),
+                       fmt::format("round {}: ensemble at {}", round + 1, candidates[i].name));
+        if (std::any_of(runs.begin(), runs.end(), Target::failed))
           d.notes.push_back(fmt::format("round {}: {} = {} did not run (time step?): not accepted", round + 1,
                                         candidates[i].name, format_value(candidates[i], fits[i].value)));
         // The statistics are means over the perturbed members, not the seed-1 run the value was
         // fitted on: a value that matched one chaotic realisation by chance gains nothing there.
-        const Target pooled = make_target(measured, {ensemble_runs, candidate_runs}, search, held);
+        const Target pooled = make_target(measured, {ensemble_runs, runs}, search, held);
         const std::vector<Features> before = members_of(ensemble_runs, recordings.size()),
-                                    at = members_of(candidate_runs, recordings.size());
+                                    at = members_of(runs, recordings.size());
         score(fits[i], ensemble_drop(pooled, before, pooled, at, false), pooled.count(false));
         fits[i].chi2 = pooled.ensemble_chi2(at, false);
         fits[i].held_out_delta = held_available ? ensemble_drop(pooled, before, pooled, at, true).value : 0.0;
-      } else {  // a sensor: the corrected recording against the same ensemble
+      } else {
         std::vector<Recording> corrected = measured;
         fits[i].candidate.correct(corrected[fits[i].candidate.recording], fits[i].value);
         const Target at = make_target(corrected, {ensemble_runs}, search, held);
@@ -1298,20 +1296,56 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
         fits[i].held_out_delta = held_available ? ensemble_drop(target, members, at, members, true).value : 0.0;
       }
       widen_to_ensemble(fits[i], target.count(false));
-      // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
-      // improvement must hold on the held-out features.
-      const FittedCandidate& f = fits[i];
-      if (f.p_value < options.alpha / tried && f.delta_bic > 0 && (!held_available || f.held_out_delta > 0)) best = i;
+    };
+    // Holm's first step is Bonferroni over every candidate tried so far; BIC must agree; the
+    // improvement must hold on the held-out features.
+    auto passes = [&](const FittedCandidate& f) {
+      return f.p_value < options.alpha / tried && f.delta_bic > 0 && (!held_available || f.held_out_delta > 0);
+    };
+    int attempts = 0;
+    for (std::size_t rank = 0; rank < order.size() && attempts < kAttempts && best == fits.size(); ++rank) {
+      const std::size_t i = order[rank];
+      if (fits[i].delta <= 0) break;
+      attempts += i < candidates.size();
+      test(i);
+      if (passes(fits[i])) best = i;
+    }
+    // Similar signatures (catalogue): a passing physics candidate meets each similar one whose
+    // profile also dropped and that passes too, the two ensembles compared member by member
+    // (shared seeds). The other is named instead if it fits better beyond the Monte Carlo bound
+    // and kIndistinguishable; within them the two are said to fit alike.
+    std::vector<std::string> alike;
+    if (best < candidates.size()) {
+      const CatalogueEntry* entry = catalogue_entry(candidates[best].entry);
+      const std::size_t first = best;
+      for (std::size_t j = 0; entry && j < candidates.size(); ++j) {
+        if (j == first || profile_delta[j] <= 0 ||
+            !std::count(entry->similar.begin(), entry->similar.end(), candidates[j].entry))
+          continue;
+        if (!tested.count(j)) test(j);
+        if (!passes(fits[j])) continue;
+        const std::vector<Features> at_best = members_of(tested[best], recordings.size()),
+                                    at_j = members_of(tested[j], recordings.size());
+        const Target pooled = make_target(measured, {ensemble_runs, tested[best], tested[j]}, search, held);
+        const Drop between = ensemble_drop(pooled, at_best, pooled, at_j, false);
+        if (exceeds(between, kIndistinguishable)) {
+          d.notes.push_back(fmt::format("round {}: {} fits better than {} (similar signature; chi2 {:.1f} +- {:.1f} "
+                                        "lower on the ensembles)", round + 1, candidates[j].name, candidates[best].name,
+                                        between.value, between.se));
+          best = j;
+        } else if (!exceeds({-between.value, between.se}, kIndistinguishable)) {
+          alike.push_back(candidates[j].name);
+        }
+      }
     }
     d.rounds.push_back(fits);
     if (best == fits.size()) break;
     const bool sensor = best >= candidates.size();
     const FittedCandidate f = fits[best];
-    std::vector<std::string> alike;
     std::vector<std::pair<std::string, double>> similar;
     const CatalogueEntry* entry = catalogue_entry(f.candidate.entry);
     for (std::size_t i = 0; i < fits.size(); ++i) {
-      if (i == best || profile_delta[i] <= 0) continue;
+      if (i == best || profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), fits[i].candidate.name)) continue;
       if (profile_delta[i] > profile_delta[best] - kIndistinguishable) alike.push_back(fits[i].candidate.name);
       else if (entry && std::count(entry->similar.begin(), entry->similar.end(), fits[i].candidate.entry))
         similar.push_back({fits[i].candidate.name, profile_delta[i]});
@@ -1348,7 +1382,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     candidates[best].nominal = f.value, candidates[best].profile_scale = 0.1, candidates[best].at_boundary = false;
     // The scatter of chaos and noise depends on the model: from now on the ensemble around the
     // improved one.
-    ensemble_runs = candidate_runs;
+    ensemble_runs = tested[best];
     current = members_of(ensemble_runs, recordings.size()).front();
     target = make_target(measured, {ensemble_runs}, search, held);
   }

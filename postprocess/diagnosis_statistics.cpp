@@ -220,6 +220,8 @@ Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const 
   return d;
 }
 
+bool exceeds(const Drop& drop, double margin) { return drop.value - kMonteCarloBound * drop.se > margin; }
+
 double prior_penalty(const Candidate& c, double value) {
   return c.prior_sd > 0 ? std::pow((value - c.nominal) / c.prior_sd, 2) : 0.0;
 }

@@ -100,6 +100,9 @@ struct Drop {
 Drop ensemble_drop(const Target& t0, const std::vector<Features>& before, const Target& t1,
                    const std::vector<Features>& at, std::optional<bool> held);
 
+// Whether a chi2 drop is above `margin` at its lower Monte Carlo bound (drop - 2 s.e., as score).
+bool exceeds(const Drop& drop, double margin);
+
 // -2 log of a candidate's prior at `value` relative to its nominal (0 without a prior).
 double prior_penalty(const Candidate& c, double value);
 
