@@ -40,6 +40,7 @@ const double kMinRest = 1.0;       // s: the shortest rest whose slope counts to
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
 const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
+const int kRefinedSpan = 5;        // points of a refined profile a parabola is fitted through (its lowest and 2 each side)
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ catalogue
@@ -827,20 +828,36 @@ struct Profile {
   std::vector<Features> features;
 };
 
-FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
-                          double held_base, bool held_available) {
+// Index of the lowest chi2 of a profile's points (u, chi2).
+std::size_t lowest_point(const std::vector<std::pair<double, double>>& curve) {
+  return static_cast<std::size_t>(std::min_element(curve.begin(), curve.end(), [](const auto& a, const auto& b) {
+                                    return a.second < b.second;
+                                  }) - curve.begin());
+}
+
+// The profile's points (u, chi2 + the prior's penalty), sorted by u.
+std::vector<std::pair<double, double>> profile_curve(const Candidate& c, const Profile& p, const Target& target) {
   std::vector<std::pair<double, double>> curve;
   for (std::size_t i = 0; i < p.u.size(); ++i)
     curve.push_back({p.u[i], target.chi2(p.features[i], false) + prior_penalty(c, to_value(c, p.u[i]))});
   std::sort(curve.begin(), curve.end());
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
+  return curve;
+}
+
+// The fit of candidate c from its profile p: the chi2 and held-out change at its lowest point.
+// The value is that point's, or with `refined` (a profile densely sampled about its minimum,
+// the two refinement rounds) the minimum of the parabola through kRefinedSpan points around it.
+FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& target, double chi2_base,
+                          double held_base, bool held_available, bool refined) {
+  const std::vector<std::pair<double, double>> curve = profile_curve(c, p, target);
+  const std::size_t best = lowest_point(curve);
+  const ProfileMinimum minimum = profile_minimum(curve, refined ? kRefinedSpan : 3);
   FittedCandidate f;
   f.candidate = c;
-  f.value = to_value(c, curve[best].first);
-  f.chi2 = curve[best].second - prior_penalty(c, f.value);  // the fit's misfit; score() counts the prior
+  f.value = to_value(c, refined && std::isfinite(minimum.u) ? minimum.u : curve[best].first);
+  f.chi2 = curve[best].second - prior_penalty(c, to_value(c, curve[best].first));  // the misfit; score() counts the prior
   score(f, {chi2_base - f.chi2, 0}, target.count(false));
-  const double sd_u = profile_sd(curve) * birge_ratio(curve[best].second, target.count(false));
+  const double sd_u = minimum.sd * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
   f.evaluations = static_cast<int>(p.u.size());
   if (held_available) {
@@ -848,6 +865,24 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
       if (std::abs(p.u[i] - curve[best].first) < 1e-12) f.held_out_delta = held_base - target.chi2(p.features[i], true);
   }
   return f;
+}
+
+// Four new points about the profile's lowest point u between its neighbours lo and hi: two at
+// the thirds of each side (a point at a fifth of [lo, hi] would repeat u itself whenever the
+// neighbours are the quick profile's 4x ladder, u / 4 and 4 u), or four at the fifths of the one
+// side there is when u is at an end of the range.
+std::vector<double> refinement_points(const std::vector<std::pair<double, double>>& curve) {
+  const std::size_t best = lowest_point(curve);
+  const double u = curve[best].first;
+  const double lo = best == 0 ? 0.0 : curve[best - 1].first, hi = best + 1 == curve.size() ? 1.0 : curve[best + 1].first;
+  std::vector<double> out;
+  if (u - lo > 1e-12 && hi - u > 1e-12) {
+    for (double t : {1.0 / 3, 2.0 / 3}) out.insert(out.end(), {lo + (u - lo) * t, u + (hi - u) * t});
+  } else {
+    const double from = u - lo > 1e-12 ? lo : u, to = u - lo > 1e-12 ? u : hi;
+    for (int k = 1; k <= 4; ++k) out.push_back(from + (to - from) * k / 5.0);
+  }
+  return out;
 }
 
 // The profile's curvature is one chaotic run's, whose jitter can make it steep at its minimum
@@ -915,14 +950,13 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
     curve.push_back({k / 40.0, t.chi2(current, false)});
     held_curve.push_back({k / 40.0, t.chi2(current, true)});
   }
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < curve.size(); ++i) if (curve[i].second < curve[best].second) best = i;
+  const std::size_t best = lowest_point(curve);
   FittedCandidate f;
   f.candidate = c;
   f.value = to_value(c, curve[best].first);
   f.chi2 = curve[best].second;
   score(f, {chi2_base - f.chi2, 0}, fit_count);
-  f.standard_error = profile_sd(curve) * birge_ratio(curve[best].second, fit_count) * (c.upper - c.lower);
+  f.standard_error = profile_minimum(curve, 3).sd * birge_ratio(curve[best].second, fit_count) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
   return f;
@@ -1235,7 +1269,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     tried += static_cast<int>(candidates.size() + sensor_candidates.size());
     std::vector<FittedCandidate> fits;
     for (std::size_t i = 0; i < candidates.size(); ++i)
-      fits.push_back(summarise(candidates[i], profiles[i], target, chi2_base, held_base, held_available));
+      fits.push_back(summarise(candidates[i], profiles[i], target, chi2_base, held_base, held_available, false));
     for (const Candidate& c : sensor_candidates)
       fits.push_back(fit_sensor(c, measured, ensemble_runs, search, held, current, chi2_base, held_base, held_available,
                                 target.count(false)));
@@ -1255,19 +1289,14 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
     auto test = [&](std::size_t i) {
       for (int refine = 0; refine < 2 && i < candidates.size(); ++refine) {
         Profile& p = profiles[i];
-        const double u = to_scaled(candidates[i], fits[i].value);
-        std::vector<double> us = p.u;
-        std::sort(us.begin(), us.end());
-        const auto at = std::lower_bound(us.begin(), us.end(), u - 1e-12);
-        const double lo = at == us.begin() ? 0.0 : *(at - 1), hi = at + 1 == us.end() ? 1.0 : *(at + 1);
         std::vector<Model> refine_points;
-        for (int k = 1; k <= 4; ++k) {
-          p.u.push_back(lo + (hi - lo) * k / 5.0);
-          refine_points.push_back(applied(base, candidates[i], to_value(candidates[i], p.u.back())));
+        for (double u : refinement_points(profile_curve(candidates[i], p, target))) {
+          p.u.push_back(u);
+          refine_points.push_back(applied(base, candidates[i], to_value(candidates[i], u)));
         }
         const std::vector<Features> more = search.evaluate(refine_points, fmt::format("round {}: refining", round + 1));
         p.features.insert(p.features.end(), more.begin(), more.end());
-        fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available);
+        fits[i] = summarise(candidates[i], p, target, chi2_base, held_base, held_available, true);
       }
       profile_delta[i] = fits[i].delta;
       if (i < candidates.size()) {

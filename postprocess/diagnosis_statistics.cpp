@@ -1,5 +1,6 @@
 #include "diagnosis_statistics.h"
 
+#include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
@@ -237,16 +238,27 @@ void score(FittedCandidate& f, const Drop& drop, int n) {
   f.delta_bic = sure - std::log(std::max(1, n));
 }
 
-double profile_sd(const std::vector<std::pair<double, double>>& points) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < points.size(); ++i) if (points[i].second < points[best].second) best = i;
-  if (best == 0 || best + 1 >= points.size()) return signal::kNaN;
-  const auto [x0, y0] = points[best - 1];
-  const auto [x1, y1] = points[best];
-  const auto [x2, y2] = points[best + 1];
-  if (!std::isfinite(y0) || !std::isfinite(y2)) return signal::kNaN;  // a neighbour did not run
-  const double a = ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0);
-  return a > 0 ? 1 / std::sqrt(a) : signal::kNaN;
+ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& points, int span) {
+  const auto n = static_cast<std::ptrdiff_t>(points.size());
+  const std::ptrdiff_t used = std::min<std::ptrdiff_t>(span, n);
+  if (used < 3) return {};
+  std::ptrdiff_t lowest = 0;
+  for (std::ptrdiff_t i = 1; i < n; ++i) if (points[i].second < points[lowest].second) lowest = i;
+  const std::ptrdiff_t first = std::clamp<std::ptrdiff_t>(lowest - used / 2, 0, n - used);
+  const double centre = points[lowest].first;  // conditioning: u about the lowest point
+  Eigen::MatrixXd basis(used, 3);
+  Eigen::VectorXd chi2(used);
+  for (std::ptrdiff_t i = 0; i < used; ++i) {
+    const auto [u, c] = points[first + i];
+    if (!std::isfinite(c)) return {};  // a point did not run
+    basis.row(i) << (u - centre) * (u - centre), u - centre, 1.0;
+    chi2(i) = c;
+  }
+  const Eigen::Vector3d fit = basis.colPivHouseholderQr().solve(chi2);
+  if (!(fit(0) > 0)) return {};
+  const double u = centre - fit(1) / (2 * fit(0));
+  if (u < points[first].first || u > points[first + used - 1].first) return {};
+  return {u, 1 / std::sqrt(fit(0))};
 }
 
 double secant_sd(double u0, double u, double drop) { return drop > 0 ? std::abs(u - u0) / std::sqrt(drop) : signal::kNaN; }

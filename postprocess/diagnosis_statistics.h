@@ -8,6 +8,7 @@
 // taken as Student's t (the scatter is estimated from a few members) and turned into a normal z,
 // and a chi2 drop is trusted only down to its Monte Carlo uncertainty.
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -111,9 +112,15 @@ double prior_penalty(const Candidate& c, double value);
 // (one parameter, n fit-set features).
 void score(FittedCandidate& f, const Drop& drop, int n);
 
-// Standard error (scaled units) from a parabola through the three points (u, chi2) around the
-// minimum: chi2 rises by 1 at one s.d. NaN when not convex.
-double profile_sd(const std::vector<std::pair<double, double>>& points);
+// The minimum of a profile (points (u, chi2), sorted by u) from the least-squares parabola
+// through the `span` points around its lowest one, and the s.d. there (chi2 rises by 1 at one
+// s.d.), both in scaled units. Through three points the parabola interpolates; through more it
+// averages the jitter a chaotic run puts on each point, which the lowest point alone picks up.
+struct ProfileMinimum {
+  double u = std::numeric_limits<double>::quiet_NaN();   // NaN: not convex, a point did not run, or outside the points
+  double sd = std::numeric_limits<double>::quiet_NaN();  // NaN with u
+};
+ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& points, int span);
 
 // Standard error (scaled units) from the parabola with its minimum at the fit u through the
 // model before it (u0), `drop` below: |u - u0| / sqrt(drop). NaN without a drop.

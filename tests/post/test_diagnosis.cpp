@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "diagnosis.h"
 #include "diagnosis_report.h"
@@ -49,6 +50,8 @@ json model(double restitution) {
 void expect_standard_error_covers(const diagnosis::FittedCandidate& fit, double truth) {
   const bool log = fit.candidate.log_scale;
   const double error = log ? std::log(fit.value / truth) : fit.value - truth;
+  std::cout << fmt::format("measured: {} = {:.4g} (s.e. {:.3g}{}) for {:.4g}\n", fit.candidate.name, fit.value,
+                           fit.standard_error, log ? " in log" : "", truth);
   EXPECT_LT(std::abs(error), 3 * fit.standard_error) << fit.candidate.name << " = " << fit.value;
   EXPECT_LT(fit.standard_error, 0.25 * (log ? 1.0 : std::abs(truth))) << fit.candidate.name;
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -209,7 +210,43 @@ TEST(DiagnosisStatistics, AModelThatDoesNotRunFitsNothing) {
   score(f, ensemble_drop(t, members, t, at, false), t.count(false));
   EXPECT_FALSE(f.p_value < 0.01 && f.delta_bic > 0);  // never accepted
   // Its profile point is no neighbour of a minimum: no standard error from it.
-  EXPECT_TRUE(std::isnan(profile_sd({{0.0, t.chi2(failed, false)}, {0.5, 1.0}, {1.0, 3.0}})));
+  EXPECT_TRUE(std::isnan(profile_minimum({{0.0, t.chi2(failed, false)}, {0.5, 1.0}, {1.0, 3.0}}, 3).sd));
+}
+
+TEST(DiagnosisStatistics, AProfilesParabolaFindsItsMinimumBetterThanItsLowestPoint) {
+  // Exact: chi2 = 4 (u - 0.3)^2 + 2 through three points has its minimum at 0.3, where chi2
+  // rises by 1 at 1 / sqrt(4) = 0.5.
+  const auto exact = [](double u) { return 4 * (u - 0.3) * (u - 0.3) + 2; };
+  const ProfileMinimum three = profile_minimum({{0.0, exact(0.0)}, {0.2, exact(0.2)}, {1.0, exact(1.0)}}, 3);
+  EXPECT_NEAR(three.u, 0.3, 1e-12);
+  EXPECT_NEAR(three.sd, 0.5, 1e-12);
+  EXPECT_TRUE(std::isnan(profile_minimum({{0.0, 1.0}, {0.5, 2.0}, {1.0, 1.5}}, 3).u));  // concave: no minimum
+  // A refined profile: 9 points 0.04 apart about a true minimum at 0.5 (s.d. 0.05 in u) and one
+  // more near it, each chi2 with unit Gaussian jitter (a run's chaos at the noise level). Over
+  // 4000 draws the 5-point parabola's minimum must err less than the lowest point, the value
+  // a refined fit takes (simulated beforehand: rms 0.019 against 0.024, 8 % of draws without a
+  // convex parabola inside its points, which keep the lowest point). 4000 draws put the rms
+  // within 2 % of itself, well inside that 20 % gap.
+  std::mt19937 rng(41);
+  std::normal_distribution<double> jitter(0, 1);
+  std::uniform_real_distribution<double> near(-0.02, 0.02);
+  double lowest_square = 0, parabola_square = 0;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    std::vector<std::pair<double, double>> curve;
+    for (int k = -4; k <= 4; ++k) curve.push_back({0.5 + 0.04 * k, 0.0});
+    curve.push_back({0.5 + near(rng), 0.0});
+    std::sort(curve.begin(), curve.end());
+    for (auto& [u, chi2] : curve) chi2 = std::pow((u - 0.5) / 0.05, 2) + jitter(rng);
+    const double lowest = std::min_element(curve.begin(), curve.end(), [](auto& a, auto& b) {
+                            return a.second < b.second;
+                          })->first;
+    const ProfileMinimum fit = profile_minimum(curve, 5);
+    lowest_square += std::pow(lowest - 0.5, 2);
+    parabola_square += std::pow((std::isfinite(fit.u) ? fit.u : lowest) - 0.5, 2);
+  }
+  std::printf("rms error of the minimum: parabola %.4f, lowest point %.4f\n", std::sqrt(parabola_square / kTrials),
+              std::sqrt(lowest_square / kTrials));
+  EXPECT_LT(std::sqrt(parabola_square / kTrials), 0.9 * std::sqrt(lowest_square / kTrials));
 }
 
 TEST(DiagnosisStatistics, TheUnexplainedFlagFiresOnARightModelAtItsFamilyWiseRate) {
