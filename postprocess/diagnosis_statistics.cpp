@@ -256,8 +256,11 @@ ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& poi
   }
   const Eigen::Vector3d fit = basis.colPivHouseholderQr().solve(chi2);
   if (!(fit(0) > 0)) return {};
+  // Between the lowest point's neighbours: on a chaotic run's profile, not a parabola over the
+  // whole window, the minimum may refine the lowest point but never pass a neighbour.
   const double u = centre - fit(1) / (2 * fit(0));
-  if (u < points[first].first || u > points[first + used - 1].first) return {};
+  if (u < points[std::max<std::ptrdiff_t>(lowest - 1, 0)].first || u > points[std::min(lowest + 1, n - 1)].first)
+    return {};
   return {u, 1 / std::sqrt(fit(0))};
 }
 

@@ -116,8 +116,9 @@ void score(FittedCandidate& f, const Drop& drop, int n);
 // through the `span` points around its lowest one, and the s.d. there (chi2 rises by 1 at one
 // s.d.), both in scaled units. Through three points the parabola interpolates; through more it
 // averages the jitter a chaotic run puts on each point, which the lowest point alone picks up.
+// The minimum must lie between the lowest point's neighbours.
 struct ProfileMinimum {
-  double u = std::numeric_limits<double>::quiet_NaN();   // NaN: not convex, a point did not run, or outside the points
+  double u = std::numeric_limits<double>::quiet_NaN();   // NaN: not convex, a point did not run, or beyond a neighbour
   double sd = std::numeric_limits<double>::quiet_NaN();  // NaN with u
 };
 ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& points, int span);
