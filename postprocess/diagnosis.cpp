@@ -669,7 +669,7 @@ void shift_back(const Recording& r, RecordingChannel& channel, double delay) {
 // more. Offered whether or not a channel's delay is suspected: that check correlates with the
 // nominal run before the two diverge, and a chaotic body, or a delay that is itself the
 // divergence, leaves it too little (case15 of the proof study: every tower channel 80 ms late,
-// none suspected, the delay taken for a narrower base). It runs no simulation.
+// none suspected). It runs no simulation.
 std::vector<Candidate> clock_candidates(const Recording& recording, std::size_t index) {
   std::map<std::string, int> channels;  // body -> its channels in the recording
   for (const RecordingChannel& c : recording.channels)
