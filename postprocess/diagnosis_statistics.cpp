@@ -238,6 +238,13 @@ void score(FittedCandidate& f, const Drop& drop, int n) {
   f.delta_bic = sure - std::log(std::max(1, n));
 }
 
+bool undecided(const FittedCandidate& f, const Drop& drop, int n, const std::function<bool(const FittedCandidate&)>& passes) {
+  if (passes(f)) return false;
+  FittedCandidate exact = f;
+  score(exact, {drop.value, 0}, n);
+  return passes(exact);
+}
+
 ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& points, int span) {
   const auto n = static_cast<std::ptrdiff_t>(points.size());
   const std::ptrdiff_t used = std::min<std::ptrdiff_t>(span, n);

@@ -8,6 +8,7 @@
 // taken as Student's t (the scatter is estimated from a few members) and turned into a normal z,
 // and a chi2 drop is trusted only down to its Monte Carlo uncertainty.
 
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -111,6 +112,11 @@ double prior_penalty(const Candidate& c, double value);
 // (drop - 2 s.e.) less the prior's penalty: boundary-corrected LRT p-value and BIC difference
 // (one parameter, n fit-set features).
 void score(FittedCandidate& f, const Drop& drop, int n);
+
+// The sequential ensemble test after its first look: a fit that fails at its Monte Carlo bound
+// but would pass on the drop as measured is undecided (more members can tell), not refuted.
+// f is scored on `drop` over n fit-set features; `passes` is the acceptance rule.
+bool undecided(const FittedCandidate& f, const Drop& drop, int n, const std::function<bool(const FittedCandidate&)>& passes);
 
 // The minimum of a profile (points (u, chi2), sorted by u) from the least-squares parabola
 // through the `span` points around its lowest one, and the s.d. there (chi2 rises by 1 at one
