@@ -123,7 +123,8 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--json", o->json_file, "write the diagnosis (effects, recalibrations, measurement issues, ...) as JSON");
   sub->add_option("--report", o->report, "write an HTML report (verdict, before/after overlays, candidates, features)");
   sub->add_option("--jobs", o->options.jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
-  sub->add_option("--ensemble", o->options.ensemble, "perturbed runs that measure the feature scatter")
+  sub->add_option("--ensemble", o->options.ensemble,
+                  "perturbed runs that measure the feature scatter (twice as many where one ensemble cannot decide a test)")
       ->capture_default_str()
       ->check(CLI::Range(3, 50));  // the jackknife of a chi2 drop needs 3 member pairs
   sub->add_option("--table-gain-sd", o->options.table_gain_sd,
