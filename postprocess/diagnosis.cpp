@@ -826,6 +826,9 @@ double to_value(const Candidate& c, double u) {
 double to_scaled(const Candidate& c, double v) {
   return c.log_scale ? std::log(v / c.lower) / std::log(c.upper / c.lower) : (v - c.lower) / (c.upper - c.lower);
 }
+// What one scaled unit is in the value's units (in ln of the value on a log scale): an s.e.
+// in scaled units times this is the s.e. reported.
+double scaled_unit(const Candidate& c) { return c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower; }
 
 Model applied(const Model& base, const Candidate& c, double value) {
   Model m = base;
@@ -886,7 +889,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   f.chi2 = curve[best].second - prior_penalty(c, to_value(c, curve[best].first));  // the misfit; score() counts the prior
   score(f, {chi2_base - f.chi2, 0}, target.count(false));
   const double sd_u = minimum.sd * birge_ratio(curve[best].second, target.count(false));
-  f.standard_error = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
+  f.standard_error = sd_u * scaled_unit(c);
   f.evaluations = static_cast<int>(p.u.size());
   if (held_available) {
     for (std::size_t i = 0; i < p.u.size(); ++i)
@@ -920,7 +923,7 @@ std::vector<double> refinement_points(const std::vector<std::pair<double, double
 void widen_to_ensemble(FittedCandidate& f, int fit_count) {
   const Candidate& c = f.candidate;
   const double sd_u = secant_sd(to_scaled(c, c.nominal), to_scaled(c, f.value), f.delta) * birge_ratio(f.chi2, fit_count);
-  const double se = sd_u * (c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower);
+  const double se = sd_u * scaled_unit(c);
   if (std::isfinite(se) && !(se <= f.standard_error)) f.standard_error = se;
 }
 
@@ -1479,8 +1482,7 @@ Diagnosis diagnose(const json& scenario, const std::vector<Recording>& given, co
         return;
       compare(there, ensemble_runs, runs);
       if (!passes(there, true)) return;
-      const double range = c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower;
-      there.standard_error = minimum.sd * birge_ratio(there.chi2, target.count(false)) * range;
+      there.standard_error = minimum.sd * birge_ratio(there.chi2, target.count(false)) * scaled_unit(c);
       widen_to_ensemble(there, target.count(false));
       d.notes.push_back(fmt::format("round {}: {} on the ensemble: {} (profile {})", round + 1, c.name,
                                     format_value(c, there.value), format_value(c, fits[i].value)));
