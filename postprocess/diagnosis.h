@@ -31,6 +31,8 @@ struct CatalogueEntry {
   std::vector<std::string> similar;  // entries with much the same signature in the event features (symmetric)
 };
 const std::vector<CatalogueEntry>& catalogue();
+// Catalogue entry `name`, or nullptr (the sensor candidates are not physics).
+const CatalogueEntry* catalogue_entry(const std::string& name);
 
 // A catalogue entry instantiated on one interface or body of a scenario.
 struct Candidate {

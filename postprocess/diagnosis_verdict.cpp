@@ -1,0 +1,157 @@
+#include "diagnosis_verdict.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+
+namespace freestand::diagnosis {
+
+using nlohmann::json;
+
+std::string format_value(const Candidate& c, double v) {
+  return c.unit.empty() ? fmt::format("{:.3g}", v) : fmt::format("{:.3g} {}", v, c.unit);
+}
+
+namespace {
+
+// The candidates of a similar catalogue entry that also improved an accepted effect's profile.
+std::string similar_words(const Effect& e) {
+  if (e.similar.empty()) return "";
+  std::vector<std::string> parts;
+  for (const auto& [name, drop] : e.similar) parts.push_back(fmt::format("{} (profile chi2 drop {:.1f})", name, drop));
+  return fmt::format(" Of similar signature, also improving the single-run profile but by less: {}.", fmt::join(parts, ", "));
+}
+
+// Where a mismatched feature is: the impact of its axis, else its time and name.
+std::string event_words(const Mismatch& m) {
+  const std::size_t impact = m.feature.find(".impact");
+  if (impact != std::string::npos)
+    return fmt::format("at impact {} of {}", std::stoi(m.feature.substr(impact + 7)),
+                       m.feature.substr(m.feature.find('.') + 1, impact - m.feature.find('.') - 1));
+  return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
+}
+
+// One accepted effect: what, the value and its uncertainty, the misfit before and after, and
+// what fits alike.
+std::string effect_words(const Effect& e) {
+  const FittedCandidate& f = e.fit;
+  const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
+                          : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
+                                                  : fmt::format("+- {:.2g}", f.standard_error);
+  return fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} "
+                     "candidates, held-out improvement {:.1f}.{}{}{}\n",
+                     e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
+                                                                                              : "Missing physics",
+                     f.candidate.description, f.candidate.name, format_value(f.candidate, f.value), err,
+                     format_value(f.candidate, f.candidate.nominal), f.chi2 + f.delta, f.chi2, f.delta_se, f.p_value,
+                     e.candidates_tried, f.held_out_delta, e.far_off ? " FAR from the stated value: check the nominal." : "",
+                     e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")),
+                     similar_words(e));
+}
+
+// Where the search ended: within the noise (with or without effects), or what is unexplained.
+std::string closing_words(const Diagnosis& d) {
+  const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
+  if (noise_only && d.effects.empty())
+    return fmt::format("No missing physics found: the model matches the recording within noise and chaos "
+                       "(misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n", d.chi2_final, d.feature_count,
+                       d.chi2_noise_limit);
+  if (noise_only)
+    return fmt::format("Nothing significant is left (misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n",
+                       d.chi2_final, d.feature_count, d.chi2_noise_limit);
+  std::string v = fmt::format("Unexplained: no candidate explains the rest (misfit {:.1f} for {} features, 99 % noise "
+                              "limit {:.1f}).", d.chi2_final, d.feature_count, d.chi2_noise_limit);
+  if (!d.unexplained.empty())
+    v += fmt::format(" Mismatched from t = {:.2f} s ({}) to t = {:.2f} s.", d.unexplained.front().time,
+                     event_words(d.unexplained.front()), d.unexplained.back().time);
+  return v + "\n";
+}
+
+}  // namespace
+
+// The verdict: measurement and numerics first, then where the model as given mismatched,
+// each effect, and where the search ended.
+std::string verdict_text(const Diagnosis& d) {
+  std::string v;
+  for (const TableTracking& k : d.table)
+    v += "Measurement: " + k.text + ". The simulations replay the recorded table motion, so the bodies are "
+         "compared under what the table did.\n";
+  for (const GridCheck& c : d.grid_checks)
+    if (c.adopted)
+      v += fmt::format("Numerics: the model's contact grid was not converged (on the finest grid {} the features moved "
+                       "by {:.0f} against a 99 % limit of {:.0f}); refined to {}.\n", c.reference, c.distance, c.limit, c.grid);
+  for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
+  if (!d.mismatches.empty()) {
+    const Mismatch& first = d.mismatches.front();
+    std::set<std::string> modes, bodies;
+    for (const Mismatch& m : d.mismatches) modes.insert(m.mode), bodies.insert(m.body);
+    v += fmt::format("Mismatch: {} ({}) from t = {:.2f} s, first {}; {} of {} event features beyond {} s.d.\n",
+                     fmt::join(bodies, ", "), fmt::join(modes, ", "), first.time, event_words(first),
+                     d.mismatches.size(), d.feature_count, d.z_threshold);
+  }
+  for (const Effect& e : d.effects) v += effect_words(e);
+  return v + closing_words(d);
+}
+
+json diagnosis_json(const Diagnosis& d) {
+  auto fitted = [](const FittedCandidate& f) {
+    return json{{"candidate", f.candidate.name}, {"catalogue", f.candidate.entry}, {"where", f.candidate.where},
+                {"description", f.candidate.description}, {"unit", f.candidate.unit}, {"value", f.value},
+                {"standard_error", std::isfinite(f.standard_error) ? json(f.standard_error) : json(nullptr)},
+                {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
+                {"range", {f.candidate.lower, f.candidate.upper}}, {"stated", f.candidate.stated},
+                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
+                {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations}};
+  };
+  auto mismatch = [](const Mismatch& m) {
+    return json{{"feature", m.feature}, {"body", m.body}, {"mode", m.mode}, {"time", m.time},
+                {"recorded", m.recorded}, {"simulated", m.simulated}, {"z", m.z}};
+  };
+  json out = {{"verdict", d.verdict}, {"feature_count", d.feature_count}, {"chi2_nominal", d.chi2_nominal},
+              {"chi2_final", d.chi2_final}, {"chi2_noise_limit_99", d.chi2_noise_limit},
+              {"simulations", d.simulations}, {"notes", d.notes}, {"improved_scenario", d.improved}};
+  out["grid_checks"] = json::array();
+  for (const GridCheck& c : d.grid_checks)
+    out["grid_checks"].push_back({{"reference", json::parse(c.reference)}, {"distance", c.distance}, {"limit", c.limit},
+                                  {"adopted", c.adopted}, {"grid", c.grid.empty() ? json() : json::parse(c.grid)}});
+  out["measurement_issues"] = json::array();
+  for (const MeasurementIssue& m : d.measurement)
+    out["measurement_issues"].push_back({{"channel", m.channel}, {"text", m.text}, {"delay", m.delay},
+                                         {"delay_significant", m.delay_significant}, {"gain", m.gain},
+                                         {"gain_sd", m.gain_sd}, {"gain_significant", m.gain_significant},
+                                         {"bias", m.bias}, {"drift", m.drift}, {"drift_significant", m.drift_significant},
+                                         {"correlation", m.correlation}, {"round", m.round},
+                                         {"catalogue", m.delay_significant ? "sensor_delay"
+                                                       : m.gain_significant ? "sensor_gain" : "sensor_drift"}});
+  out["table_tracking"] = json::array();
+  for (const TableTracking& k : d.table)
+    out["table_tracking"].push_back({{"channel", k.channel}, {"text", k.text}, {"delay", k.delay},
+                                     {"delay_sd", k.delay_sd}, {"gain", k.gain}, {"gain_sd", k.gain_sd},
+                                     {"left_share", k.left_share}, {"noise_share", k.noise_share},
+                                     {"correlation", k.correlation}});
+  out["effects"] = out["recalibrated"] = json::array();
+  for (const Effect& e : d.effects) {
+    json j = fitted(e.fit);
+    json similar = json::array();
+    for (const auto& [name, drop] : e.similar) similar.push_back({{"candidate", name}, {"profile_delta_chi2", drop}});
+    j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable}, {"similar_signature", similar},
+              {"candidates_tried", e.candidates_tried}, {"round", e.round}});
+    if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
+    out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);
+  }
+  out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();
+  for (const Mismatch& m : d.mismatches) out["mismatches"].push_back(mismatch(m));
+  for (const Mismatch& m : d.unexplained) out["unexplained"].push_back(mismatch(m));
+  for (const ChannelDivergence& c : d.divergence)
+    out["divergence"].push_back({{"channel", c.channel}, {"time", std::isfinite(c.time) ? json(c.time) : json(nullptr)}});
+  for (std::size_t r = 0; r < d.rounds.size(); ++r)
+    for (const FittedCandidate& f : d.rounds[r]) {
+      json j = fitted(f);
+      j["round"] = r + 1;
+      out["candidates"].push_back(j);
+    }
+  return out;
+}
+
+}  // namespace freestand::diagnosis
