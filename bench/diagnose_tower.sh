@@ -37,8 +37,20 @@ with open(src + "/channels.csv") as f, open(stem + ".csv", "w", newline="") as g
                 row[i] = repr(float(row[i]) + random.gauss(0, 5e-4))
         w.writerow(row)
 EOF
+# The machine's speed, measured in this script: stock LIGGGHTS on the free-rocking example
+# (docs/benchmarks.md, first table: 0.35 s loop time on 2026-11-22), fastest of 3. The
+# diagnosis wall time in units of it compares days and machines.
+stock=""
+for _ in 1 2 3; do
+  (cd "$root/inputs/free_rocking" && liggghts -in free_rocking.in -var out "$out/stock.dat" -log "$out/stock.log" \
+    -screen /dev/null)
+  t=$(grep -a '^Loop time' "$out/stock.log" | tail -1 | awk '{ print $4 }')
+  stock=$(awk -v t="$t" -v b="$stock" 'BEGIN { print (b == "" || t < b) ? t : b }')
+done
 start=$(date +%s)
 "$root/build/freestand" diagnose "$scenario" "$out/recording.csv" --jobs 2 --json "$out/diagnosis.json" \
   -o "$out/improved.json" | tee "$out/diagnose.log"
 end=$(date +%s)
 echo "freestand diagnose, tower on pedestal, 20 s: $((end - start)) s wall on 2 cores"
+awk -v w=$((end - start)) -v s="$stock" 'BEGIN { printf "stock free rocking (speed reference): %s s loop time; the diagnosis took %.0f of it (at the 0.35 s of 2026-11-22: %.0f s)\n", s, w / s, 0.35 * w / s }'
+
