@@ -520,12 +520,6 @@ Model applied(const Model& base, const Candidate& c, double value) {
 // close to it (a 4 % step finds a 10 mm COM offset that a coarse grid over +-90 mm misses), and
 // a ladder from 1 % because an effect hidden in the noise is small against a range that must
 // hold every plausible value (a 0.25 mm short corner, 0.6 % of its +-20 mm range).
-// A log-scaled range (a stiffness: k0 / 100 .. 10 k0) spans three decades, and the ladder's
-// first three rungs reach only a factor 3 of it (0.16 of ln 1000): a contact ten times softer
-// than stated would lie beyond every point of its profile, where one chaotic run need not fall
-// on the way. Its profile takes the next rung pair as well (+- 0.64: the range's ends).
-constexpr int kDecadeRungs = 2;
-
 std::vector<double> profile_offsets(double u0, int count, double scale) {
   std::vector<double> out;
   for (int k = 0; static_cast<int>(out.size()) < count && k < 8; ++k)
@@ -1101,8 +1095,7 @@ Round Diagnoser::profiled(int number) {
     const Candidate& c = candidates_[i];
     const double u0 = to_scaled(c, c.nominal);
     r.profiles[i].u.push_back(u0), r.profiles[i].features.push_back(current_);
-    const int count = options_.profile_points + (c.log_scale ? kDecadeRungs : 0);
-    for (double u : profile_offsets(u0, count, c.profile_scale)) {
+    for (double u : profile_offsets(u0, options_.profile_points, c.profile_scale)) {
       r.profiles[i].u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }

@@ -131,8 +131,7 @@ void add_diagnose_command(CLI::App& app) {
                   "relative s.d. of the recorded table acceleration's gain, drawn per ensemble member")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.2));
-  sub->add_option("--profile-points", o->options.profile_points,
-                  "grid points of each candidate's quick profile (a stiffness: 2 more, to its range's ends)")
+  sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
       ->capture_default_str()
       ->check(CLI::Range(2, 16));
   sub->add_option("--z-threshold", o->options.z_threshold, "|z| that flags a feature as mismatched")
