@@ -329,29 +329,44 @@ double sum_of_squares(const std::vector<double>& r) {
   return s;
 }
 
-// Runs (model, recording) pairs `jobs` at a time, each in its own directory
-// (removed after reading); a failed run leaves its exception in `failures`.
-std::vector<Recording> simulate_parallel(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
-                                         const std::string& directory, int jobs,
-                                         std::vector<std::exception_ptr>* failures) {
-  std::vector<Recording> out(models.size());
-  failures->assign(models.size(), nullptr);
+}  // namespace
+
+void simulate_each(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
+                   const std::string& directory, int jobs,
+                   const std::function<void(std::size_t, Recording&&, std::exception_ptr)>& done) {
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i; (i = next++) < models.size();) {
       const std::string dir = (fs::path(directory) / fmt::format("run_{}", i)).string();
+      Recording simulated;
+      std::exception_ptr failure;
       try {
-        out[i] = simulate_recording(models[i], *recordings[i], dir);
+        simulated = simulate_recording(models[i], *recordings[i], dir);
       } catch (...) {
-        (*failures)[i] = std::current_exception();
+        failure = std::current_exception();
       }
       std::error_code ignored;
       fs::remove_all(dir, ignored);
+      done(i, std::move(simulated), failure);
     }
   };
   std::vector<std::thread> threads;
   for (int k = 0; k < std::max(1, jobs); ++k) threads.emplace_back(worker);
   for (std::thread& t : threads) t.join();
+}
+
+namespace {
+
+// Runs (model, recording) pairs `jobs` at a time; a failed run leaves its exception in `failures`.
+std::vector<Recording> simulate_parallel(const std::vector<json>& models, const std::vector<const Recording*>& recordings,
+                                         const std::string& directory, int jobs,
+                                         std::vector<std::exception_ptr>* failures) {
+  std::vector<Recording> out(models.size());
+  failures->assign(models.size(), nullptr);
+  simulate_each(models, recordings, directory, jobs, [&](std::size_t i, Recording&& simulated, std::exception_ptr f) {
+    out[i] = std::move(simulated);
+    (*failures)[i] = f;
+  });
   return out;
 }
 

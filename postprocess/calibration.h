@@ -144,6 +144,15 @@ std::vector<Recording> simulate_recordings(const std::vector<nlohmann::json>& mo
                                            const std::string& directory, int jobs,
                                            std::vector<std::exception_ptr>* failures = nullptr);
 
+// Simulates many (model, recording) pairs, `jobs` at a time, each in its own
+// subdirectory of `directory` (removed after reading), and hands each result to
+// `done(index, simulated, failure)` as it finishes, on the worker's thread (so
+// `done` may do the per-run analysis while the other workers simulate; it must
+// not touch shared state without a lock). A failed run passes its exception.
+void simulate_each(const std::vector<nlohmann::json>& models, const std::vector<const Recording*>& recordings,
+                   const std::string& directory, int jobs,
+                   const std::function<void(std::size_t, Recording&&, std::exception_ptr)>& done);
+
 // The scenario that predicts `recording` with a calibrated model: the
 // recording's scenario (recording_scenario) with the `fitted` values set on top
 // (apply_parameters), as the fit simulated it. The nominal's interface mu and

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <set>
@@ -423,40 +424,44 @@ class Search {
   // of the recording once, against the model as given: what a candidate explains (a vertically
   // moving table carrying a resting body) would be corrected away before it was tried, and the
   // right candidate fail against the corrected record (docs/diagnose.md, study 3).
+  // All jobs go to one pool of options_.jobs workers, and each run's features are taken on its
+  // worker's thread as it finishes: no core waits for a batch's slowest run or for the analysis.
   std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {
-    std::vector<Features> out;
-    const std::size_t chunk = std::max(1, options_.jobs) * 2;
-    for (std::size_t first = 0; first < jobs.size(); first += chunk) {
-      if (options_.progress) options_.progress(stage, static_cast<long>(first), static_cast<long>(jobs.size()));
-      std::vector<json> models;
-      std::vector<const Recording*> recs;
-      for (std::size_t i = first; i < std::min(jobs.size(), first + chunk); ++i)
-        models.push_back(jobs[i].document), recs.push_back(&recordings_[jobs[i].recording]);
-      std::vector<std::exception_ptr> failures;
-      std::vector<Recording> sims = simulate_recordings(
-          models, recs, (fs::path(directory_) / fmt::format("batch_{}", batches_++)).string(), options_.jobs, &failures);
-      for (std::size_t i = 0; i < sims.size(); ++i) {
-        const Job& job = jobs[first + i];
-        Features f;
-        if (raw && failures[i]) std::rethrow_exception(failures[i]);
-        if (raw && first + i < raw->size()) (*raw)[first + i] = sims[i];
-        if (failures[i]) {
-          f[kFailedSimulation] = {};
-        } else {
-          // Against the recording as given: a sensor gain accepted later scales its drift too
-          // (a second-order error, not corrected).
-          const Recording& recorded = recordings_[job.recording];
-          for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sims[i]))
-            add_drift(sims[i], m.channel, m.drift, recorded.time.front());
-          add_measurement_noise(sims[i], noise_for(recorded, job.seed));
-          f = prefixed(event_features(sims[i], recorded.nominal), job.recording);
-        }
-        out.push_back(std::move(f));
-      }
-      simulations += static_cast<int>(sims.size());
-    }
-    if (options_.progress) options_.progress(stage, static_cast<long>(jobs.size()), static_cast<long>(jobs.size()));
+    std::vector<json> models;
+    std::vector<const Recording*> recs;
+    for (const Job& job : jobs) models.push_back(job.document), recs.push_back(&recordings_[job.recording]);
+    std::vector<Features> out(jobs.size());
+    std::vector<std::exception_ptr> failures(jobs.size());
+    std::mutex progress_lock;
+    long finished = 0;
+    if (options_.progress) options_.progress(stage, 0, static_cast<long>(jobs.size()));
+    simulate_each(models, recs, (fs::path(directory_) / fmt::format("batch_{}", batches_++)).string(), options_.jobs,
+                  [&](std::size_t i, Recording&& sim, std::exception_ptr failure) {
+                    if (failure) {
+                      failures[i] = failure;
+                      out[i][kFailedSimulation] = {};
+                    } else {
+                      if (raw && i < raw->size()) (*raw)[i] = sim;
+                      out[i] = features_of(std::move(sim), jobs[i]);
+                    }
+                    const std::lock_guard<std::mutex> lock(progress_lock);
+                    if (options_.progress) options_.progress(stage, ++finished, static_cast<long>(jobs.size()));
+                  });
+    simulations += static_cast<int>(jobs.size());
+    if (raw)
+      for (const std::exception_ptr& f : failures) if (f) std::rethrow_exception(f);
     return out;
+  }
+
+  // A run's event features as the recording would show them: against the recording as given,
+  // with the run's own drifts at rest added (a sensor gain accepted later scales its drift too:
+  // a second-order error, not corrected) and the recording's measurement noise.
+  Features features_of(Recording sim, const Job& job) const {
+    const Recording& recorded = recordings_[job.recording];
+    for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sim))
+      add_drift(sim, m.channel, m.drift, recorded.time.front());
+    add_measurement_noise(sim, noise_for(recorded, job.seed));
+    return prefixed(event_features(sim, recorded.nominal), job.recording);
   }
 
   // Simulates one model (all recordings) per point as the ensemble's first member: its perturbed
