@@ -5,6 +5,7 @@
 #
 #   bench/diagnose_study.sh [CASES] [PARALLEL]   (defaults: out/diagnose_cases, 2)
 #   FREESTAND_TOOL=PATH: the freestand binary to use (default build/freestand)
+#   FREESTAND_DIAGNOSE_ARGS="...": more options for every diagnosis (e.g. --profile-members 2)
 #
 # Diagnose reads CASES/recordings only (NAME.csv + NAME.nominal.json) and the base scenario
 # of the case's name (the lab's model: contact stiffness, time step); the answers in
@@ -40,7 +41,7 @@ diagnose_one() {
   local scenario start
   scenario=$(scenario_of "$name")
   start=$(date +%s.%N)
-  if nice -n 10 "$tool" diagnose "$scenario" "$recording" --jobs 1 --json "$study/$name.json.part" \
+  if nice -n 10 "$tool" diagnose "$scenario" "$recording" --jobs 1 ${diagnose_args} --json "$study/$name.json.part" \
        -o "$study/$name.diagnosed.json" > "$study/$name.log" 2>&1; then
     mv "$study/$name.json.part" "$study/$name.json"
   else
@@ -50,7 +51,8 @@ diagnose_one() {
   echo "$name: $(cat "$study/$name.seconds") s"
 }
 export -f diagnose_one scenario_of
-export tool study root
+diagnose_args=${FREESTAND_DIAGNOSE_ARGS:-}
+export tool study root diagnose_args
 
 start=$(date +%s)
 ls "$cases"/recordings/*.csv | xargs -P "$parallel" -I{} bash -c 'diagnose_one "$1"' _ {}

@@ -464,21 +464,24 @@ class Search {
     return prefixed(event_features(sim, recorded.nominal), job.recording);
   }
 
-  // Simulates one model (all recordings) per point as the ensemble's first member: its perturbed
-  // initial state, table gain and noise seed (common random numbers: the same for every
-  // candidate value, so the objective changes only with the physics). Not the unperturbed
-  // nominal: a state without any perturbation is special (a block shaken along x never rocks
-  // about x), not a draw of what was recorded, and every change of the model would seem to help.
-  std::vector<Features> evaluate(const std::vector<Model>& points, const std::string& stage) {
+  // Simulates one model (all recordings) per point as the ensemble's first `members` members:
+  // their perturbed initial states, table gains and noise seeds (common random numbers: the
+  // same for every candidate value, so the objective changes only with the physics). Not the
+  // unperturbed nominal: a state without any perturbation is special (a block shaken along x
+  // never rocks about x), not a draw of what was recorded, and every change of the model would
+  // seem to help. Per point, each member's features.
+  std::vector<std::vector<Features>> evaluate(const std::vector<Model>& points, const std::string& stage,
+                                              int members = 1) {
     std::vector<Job> jobs;
     for (const Model& m : points) {
-      const std::vector<Job> first = ensemble_jobs(m, recordings_, 1, options_.table_gain_sd);
+      const std::vector<Job> first = ensemble_jobs(m, recordings_, members, options_.table_gain_sd);
       jobs.insert(jobs.end(), first.begin() + static_cast<std::ptrdiff_t>(m.size()), first.end());
     }
     const std::vector<Features> per_job = run(jobs, stage);
-    std::vector<Features> out(points.size());
+    std::vector<std::vector<Features>> out(points.size(), std::vector<Features>(static_cast<std::size_t>(members)));
     for (std::size_t i = 0, j = 0; i < points.size(); ++i)
-      for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) out[i].insert(per_job[j].begin(), per_job[j].end());
+      for (Features& member : out[i])
+        for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) member.insert(per_job[j].begin(), per_job[j].end());
     return out;
   }
 
@@ -538,9 +541,17 @@ std::vector<double> profile_offsets(double u0, int count, double scale) {
 }
 
 struct Profile {
-  std::vector<double> u;          // scaled points
-  std::vector<Features> features;
+  std::vector<double> u;                       // scaled points
+  std::vector<std::vector<Features>> members;  // per point, the features of each member it ran as
 };
+
+// The mean chi2 of a point's members: with more than one, a member's chaotic jitter no longer
+// decides alone where a profile's minimum is.
+double mean_chi2(const Target& target, const std::vector<Features>& members, bool held_out) {
+  double sum = 0;
+  for (const Features& f : members) sum += target.chi2(f, held_out);
+  return sum / static_cast<double>(members.size());
+}
 
 // Index of the lowest chi2 of a profile's points (u, chi2).
 std::size_t lowest_point(const std::vector<std::pair<double, double>>& curve) {
@@ -553,7 +564,7 @@ std::size_t lowest_point(const std::vector<std::pair<double, double>>& curve) {
 std::vector<std::pair<double, double>> profile_curve(const Candidate& c, const Profile& p, const Target& target) {
   std::vector<std::pair<double, double>> curve;
   for (std::size_t i = 0; i < p.u.size(); ++i)
-    curve.push_back({p.u[i], target.chi2(p.features[i], false) + prior_penalty(c, to_value(c, p.u[i]))});
+    curve.push_back({p.u[i], mean_chi2(target, p.members[i], false) + prior_penalty(c, to_value(c, p.u[i]))});
   std::sort(curve.begin(), curve.end());
   return curve;
 }
@@ -576,7 +587,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   f.evaluations = static_cast<int>(p.u.size());
   if (held_available) {
     for (std::size_t i = 0; i < p.u.size(); ++i)
-      if (std::abs(p.u[i] - curve[best].first) < 1e-12) f.held_out_delta = held_base - target.chi2(p.features[i], true);
+      if (std::abs(p.u[i] - curve[best].first) < 1e-12) f.held_out_delta = held_base - mean_chi2(target, p.members[i], true);
   }
   return f;
 }
@@ -653,7 +664,8 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
 // points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
 FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
-                           const Search& search, const HeldOutRule& held, const Features& current, double chi2_base,
+                           const Search& search, const HeldOutRule& held, const std::vector<Features>& current,
+                           double chi2_base,
                            double held_base, bool held_available, int fit_count) {
   std::vector<std::pair<double, double>> curve, held_curve;
   for (int k = 0; k <= 40; ++k) {
@@ -661,8 +673,8 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
     std::vector<Recording> corrected = recordings;
     c.correct(corrected[c.recording], v);
     const Target t = make_target(corrected, {runs}, search, held);
-    curve.push_back({k / 40.0, t.chi2(current, false)});
-    held_curve.push_back({k / 40.0, t.chi2(current, true)});
+    curve.push_back({k / 40.0, mean_chi2(t, current, false)});
+    held_curve.push_back({k / 40.0, mean_chi2(t, current, true)});
   }
   const std::size_t best = lowest_point(curve);
   FittedCandidate f;
@@ -858,6 +870,9 @@ std::vector<Recording> prepared(const json& scenario, const std::vector<Recordin
                                 Diagnosis& d) {
   if (given.empty()) throw InputError("diagnose: no recording");
   if (options.ensemble < 3) throw InputError(fmt::format("diagnose: --ensemble {}: at least 3 members are needed", options.ensemble));
+  if (options.profile_members < 1 || options.profile_members > options.ensemble)
+    throw InputError(fmt::format("diagnose: --profile-members {}: between 1 and the ensemble's {} members",
+                                 options.profile_members, options.ensemble));
   std::vector<Recording> recordings =
       options.shooting ? shooting_pieces(with_sensor_noise(given, d.notes), d.notes) : with_sensor_noise(given, d.notes);
   check_recordings(scenario, recordings);
@@ -948,6 +963,11 @@ class Diagnoser {
     for (const Recording& r : recordings) base.push_back(recording_scenario(scenario, r, "table_motion.csv"));
     return base;
   }
+  // The members of an ensemble a profile point runs as: its first profile_members.
+  std::vector<Features> profile_baseline(const std::vector<Features>& members) const {
+    return {members.begin(), members.begin() + std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(members.size()),
+                                                                       options_.profile_members)};
+  }
   void run_ensemble(const std::string& stage);
   void check_grid();
   void measure();
@@ -988,7 +1008,7 @@ class Diagnoser {
   Target target_;                          // the recording against the current model's ensemble
   bool held_available_ = false;            // some features are held out
   std::vector<Features> nominal_members_;  // the ensemble of the model as given
-  Features current_;                       // the profiles' baseline: the current model's first member
+  std::vector<Features> current_;          // the profiles' baseline: the current model's first profile_members
   int tried_ = 0;                          // candidates counted in the Holm correction so far
 };
 
@@ -1030,7 +1050,7 @@ void Diagnoser::check_grid() {
   Model finest = base_;
   const json finest_grid = set_grid(finest, stated_grid_, kFinestPerEdge);
   if (finest_grid.is_null()) return;
-  const Features reference = search_.evaluate({finest}, "numerics: finest contact grid").front();
+  const Features reference = search_.evaluate({finest}, "numerics: finest contact grid").front().front();
   if (Target::failed(reference))
     d_.notes.push_back(fmt::format("numerics: the finest contact grid {} did not run (time step?); the grid is not "
                                    "checked", finest_grid.dump()));
@@ -1070,7 +1090,7 @@ void Diagnoser::measure() {
   d_.chi2_nominal = target_.ensemble_chi2(nominal_members_);
   d_.chi2_noise_limit = chi2_quantile_99(d_.feature_count);
   d_.mismatches = target_.mismatches(nominal_members_, options_.z_threshold);
-  current_ = nominal_members_.front();
+  current_ = profile_baseline(nominal_members_);
 }
 
 // One round: false when no candidate passed (the search is over).
@@ -1093,21 +1113,22 @@ bool Diagnoser::search_round(int number) {
 Round Diagnoser::profiled(int number) {
   Round r;
   r.number = number;
-  r.chi2_base = target_.chi2(current_, false), r.held_base = target_.chi2(current_, true);
+  r.chi2_base = mean_chi2(target_, current_, false), r.held_base = mean_chi2(target_, current_, true);
   std::vector<Model> points;
   r.profiles.resize(candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const Candidate& c = candidates_[i];
     const double u0 = to_scaled(c, c.nominal);
-    r.profiles[i].u.push_back(u0), r.profiles[i].features.push_back(current_);
+    r.profiles[i].u.push_back(u0), r.profiles[i].members.push_back(current_);
     for (double u : profile_offsets(u0, options_.profile_points, c.profile_scale)) {
       r.profiles[i].u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
   }
-  const std::vector<Features> evaluated = search_.evaluate(points, fmt::format("round {}: profiles", number));
+  const std::vector<std::vector<Features>> evaluated =
+      search_.evaluate(points, fmt::format("round {}: profiles", number), options_.profile_members);
   for (std::size_t i = 0, j = 0; i < candidates_.size(); ++i)
-    for (std::size_t k = 1; k < r.profiles[i].u.size(); ++k) r.profiles[i].features.push_back(evaluated[j++]);
+    for (std::size_t k = 1; k < r.profiles[i].u.size(); ++k) r.profiles[i].members.push_back(evaluated[j++]);
   tried_ += static_cast<int>(candidates_.size() + sensor_candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i)
     r.fits.push_back(summarise(candidates_[i], r.profiles[i], target_, r.chi2_base, r.held_base, held_available_, false));
@@ -1180,8 +1201,9 @@ void Diagnoser::refine(Round& r, std::size_t i) {
       p.u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
-    const std::vector<Features> more = search_.evaluate(points, fmt::format("round {}: refining", r.number));
-    p.features.insert(p.features.end(), more.begin(), more.end());
+    const std::vector<std::vector<Features>> more =
+        search_.evaluate(points, fmt::format("round {}: refining", r.number), options_.profile_members);
+    p.members.insert(p.members.end(), more.begin(), more.end());
     r.fits[i] = summarise(c, p, target_, r.chi2_base, r.held_base, held_available_, true);
   }
   r.profile_delta[i] = r.fits[i].delta;
@@ -1353,7 +1375,7 @@ void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alik
   // improved one.
   ensemble_runs_ = r.tested[best];
   ensemble_more_ = r.extended.count(best) ? r.extended[best] : std::vector<Features>{};
-  current_ = members_of(ensemble_runs_, recordings_.size()).front();
+  current_ = profile_baseline(members_of(ensemble_runs_, recordings_.size()));
   target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
 }
 

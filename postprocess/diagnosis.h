@@ -104,6 +104,7 @@ struct Options {
   double table_gain_sd = 0.02;  // relative s.d. of the recorded table acceleration's gain (accelerometer
                                // calibration, 1-2 %): each ensemble member replays the table with its own gain
   int profile_points = 6;     // points of each candidate's quick profile (around the nominal)
+  int profile_members = 1;    // ensemble members each profile point runs as (chi2 averaged; cost x that)
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
   int max_effects = 3;        // iterations of the search

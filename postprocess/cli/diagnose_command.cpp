@@ -134,6 +134,11 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
       ->capture_default_str()
       ->check(CLI::Range(2, 16));
+  sub->add_option("--profile-members", o->options.profile_members,
+                  "ensemble members each profile point runs as, their chi2 averaged: a steadier profile of a chaotic "
+                  "model at that many times the profiles' cost")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
   sub->add_option("--z-threshold", o->options.z_threshold, "|z| that flags a feature as mismatched")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

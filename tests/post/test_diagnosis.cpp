@@ -112,6 +112,26 @@ TEST(Diagnosis, NamesAndRecoversRestitution) {
   EXPECT_NE(html.find("restitution[table/block]"), std::string::npos);
 }
 
+// The same recording with every profile point run as the ensemble's first two members, their
+// chi2 averaged (--profile-members 2): the profiles' baseline, their points, the refinement and
+// the sensor candidates' baseline must all take the same members, or the drops mix a member's
+// jitter into the ranking. Same truth and tolerances as above: the averaged profile is as smooth
+// in e as one member's, so the refined value must stay within the same 0.05.
+TEST(Diagnosis, ProfilesOverTwoMembersNameTheSameRestitution) {
+  test::TempDir dir;
+  const Recording recording = rocking_recording(rocking_scenario(0.35), dir, 11);
+  diagnosis::Options o = fast_options(dir);
+  o.profile_members = 2;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.6), {recording}, o);
+  std::cerr << d.verdict;
+  ASSERT_FALSE(d.effects.empty());
+  EXPECT_EQ(d.effects.front().fit.candidate.entry, "restitution");
+  EXPECT_NEAR(d.effects.front().fit.value, 0.35, 0.05);
+  expect_standard_error_covers(d.effects.front().fit, 0.35);
+  EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
+  EXPECT_LT(d.chi2_final, d.chi2_noise_limit);
+}
+
 // The centre of mass 12 mm off the axis toward the pivot edge (of b = 100 mm):
 // the block rocks on +x edge with a smaller lever arm, on -x with a larger one,
 // so the half-cycles on the two sides differ. Tolerance 3 mm: the last
@@ -507,6 +527,15 @@ TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
   }
   r.channels = {{"block.x", std::vector<double>(400, 0.0)}};
   EXPECT_THROW(diagnosis::diagnose(model(0.3), {r}, fast_options(dir)), InputError);
+  r.channels = {{"block.rock_x", std::vector<double>(400, 0.0)}};
+  diagnosis::Options more_than_the_ensemble = fast_options(dir);
+  more_than_the_ensemble.profile_members = more_than_the_ensemble.ensemble + 1;
+  try {
+    diagnosis::diagnose(model(0.3), {r}, more_than_the_ensemble);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--profile-members"), std::string::npos);
+  }
 }
 
 }  // namespace
