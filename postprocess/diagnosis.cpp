@@ -665,8 +665,7 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
 // points: 5 ms steps for a delay, about 1 % for a gain) and compared with the current model.
 FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& recordings, const std::vector<Features>& runs,
                            const Search& search, const HeldOutRule& held, const std::vector<Features>& current,
-                           double chi2_base,
-                           double held_base, bool held_available, int fit_count) {
+                           double chi2_base, double held_base, bool held_available, int fit_count) {
   std::vector<std::pair<double, double>> curve, held_curve;
   for (int k = 0; k <= 40; ++k) {
     const double v = c.lower + (c.upper - c.lower) * k / 40.0;
