@@ -103,6 +103,8 @@ struct Options {
   int ensemble = 6;           // perturbed runs that measure the feature scatter
   double table_gain_sd = 0.02;  // relative s.d. of the recorded table acceleration's gain (accelerometer
                                // calibration, 1-2 %): each ensemble member replays the table with its own gain
+  double sensor_gain_sd = 0.01;  // relative s.d. of each recorded body channel's gain (sensor calibration):
+                               // each run's channels are read with their own gains
   int profile_points = 6;     // points of each candidate's quick profile (around the nominal)
   int profile_members = 1;    // ensemble members each profile point runs as (chi2 averaged; cost x that)
   double z_threshold = 3;     // |z| that flags a feature as mismatched

@@ -13,7 +13,9 @@ void add_measurement_noise(Recording& recording, const MeasurementNoise& noise) 
     const std::string channel = c.name.substr(c.name.rfind('.') + 1);
     if (c.name.rfind("table_", 0) == 0 || channel[0] == 'q') continue;  // table: the input; quaternions: kept unit
     const bool angle = channel == "rock_x" || channel == "rock_y" || channel == "twist";
-    for (double& v : c.values) v += (angle ? noise.angle : noise.length) * normal(generator);
+    // No draw without a gain s.d., so the noise of a given seed stays what it was without gains.
+    const double gain = noise.gain_sd > 0 ? 1 + noise.gain_sd * normal(generator) : 1;
+    for (double& v : c.values) v = gain * v + (angle ? noise.angle : noise.length) * normal(generator);
   }
 }
 

@@ -17,11 +17,12 @@ struct MeasurementNoise {
   double angle = 0.0;   // standard deviation on rock_x, rock_y, twist (rad)
   double length = 0.0;  // on slide_x, slide_y, uplift and the centre x, y, z (m)
   unsigned seed = 1;
+  double gain_sd = 0.0; // relative s.d. of each body channel's gain (its calibration), drawn per channel
 };
 
 // Adds Gaussian noise to the body channels of `recording` (angles: rock,
-// twist; lengths: slide, uplift, centre); table channels and quaternions are
-// left exact.
+// twist; lengths: slide, uplift, centre), each first scaled by its own gain
+// 1 + N(0, gain_sd^2); table channels and quaternions are left exact.
 void add_measurement_noise(Recording& recording, const MeasurementNoise& noise);
 
 // Runs the scenario `document` (the known parameters in its interfaces and

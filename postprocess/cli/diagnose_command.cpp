@@ -131,6 +131,10 @@ void add_diagnose_command(CLI::App& app) {
                   "relative s.d. of the recorded table acceleration's gain, drawn per ensemble member")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.2));
+  sub->add_option("--sensor-gain-sd", o->options.sensor_gain_sd,
+                  "relative s.d. of each recorded body channel's gain (sensor calibration), drawn per run and channel")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.2));
   sub->add_option("--profile-points", o->options.profile_points, "grid points of each candidate's quick profile")
       ->capture_default_str()
       ->check(CLI::Range(2, 16));
