@@ -970,7 +970,8 @@ class Diagnoser {
     for (const Recording& r : recordings) base.push_back(recording_scenario(scenario, r, "table_motion.csv"));
     return base;
   }
-  // The members of an ensemble a profile point runs as: its first profile_members.
+  // The current model run as the members a profile point runs as (the ensemble's first
+  // profile_members, unit gains): what each point's drop is measured from.
   std::vector<Features> profile_baseline(const std::string& stage) {
     return search_.evaluate({base_}, stage, options_.profile_members).front();
   }
