@@ -949,6 +949,11 @@ struct Round {
   std::map<std::size_t, std::vector<Features>> extended;  // its members M + 1 to 2M, where a second look ran them
 };
 
+// A candidate's ensemble at its value, and its members M + 1 to 2M where a second look ran them.
+struct TestedEnsemble {
+  std::vector<Features> runs, extended;
+};
+
 // The steps of docs/diagnose.md in order: the model's ensemble, numerics, measurement, rounds
 // of candidates until nothing significant is left, the improved model and the verdict.
 class Diagnoser {
@@ -978,10 +983,15 @@ class Diagnoser {
   void run_ensemble(const std::string& stage);
   void check_grid();
   void measure();
+  const Candidate& hypothesis_candidate(const Hypothesis& h) const;
+  void test_hypotheses();
   bool search_round(int number);
   Round profiled(int number);
   std::size_t first_passing(Round& r);
+  bool passes_at(const FittedCandidate& f, double level) const;
   bool passes(const FittedCandidate& f, bool physics) const;
+  TestedEnsemble on_ensemble(FittedCandidate& f, const std::string& stage,
+                             const std::function<bool(const FittedCandidate&)>& rule);
   std::pair<Drop, int> compare(FittedCandidate& f, const std::vector<Features>& before_runs,
                                const std::vector<Features>& at_runs) const;
   void test(Round& r, std::size_t i);
@@ -993,6 +1003,7 @@ class Diagnoser {
   void settle(Round& r, std::size_t i);
   void accept(Round& r, std::size_t best, std::vector<std::string> alike);
   void finish();
+  void against_improved(const std::vector<Features>& final_members);
   json improved_scenario();
 
   const json& scenario_;
@@ -1016,17 +1027,21 @@ class Diagnoser {
   bool held_available_ = false;            // some features are held out
   std::vector<Features> nominal_members_;  // the ensemble of the model as given
   std::vector<Features> current_;          // the profiles' baseline: the current model's first profile_members
+  std::vector<std::vector<Features>> hypothesis_runs_;  // the ensemble at each hypothesis (Options order)
   int tried_ = 0;                          // candidates counted in the Holm correction so far
 };
 
 Diagnosis Diagnoser::run() {
+  // The candidates first (no simulation): a hypothesis that names none is refused before any run.
+  candidates_ = candidates_for(base_.front(), recordings_.front(), options_.table_gain_sd, &d_.notes);
+  for (const Hypothesis& h : options_.hypotheses) hypothesis_candidate(h);
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle
   // noise, each with its own noise realisation.
   run_ensemble("nominal and ensemble");
   check_grid();
   measure();
+  test_hypotheses();
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
-  candidates_ = candidates_for(base_.front(), recordings_.front(), options_.table_gain_sd, &d_.notes);
   for (int round = 1; round <= options_.max_effects && !(candidates_.empty() && sensor_candidates_.empty()); ++round)
     if (!search_round(round)) break;
   finish();
@@ -1100,6 +1115,39 @@ void Diagnoser::measure() {
   current_ = profile_baseline("profiles' baseline");
 }
 
+// The candidate a hypothesis names, its value checked against the candidate's range.
+const Candidate& Diagnoser::hypothesis_candidate(const Hypothesis& h) const {
+  const auto c = std::find_if(candidates_.begin(), candidates_.end(),
+                              [&](const Candidate& k) { return k.name == h.candidate; });
+  if (c == candidates_.end()) {
+    std::vector<std::string> names;
+    for (const Candidate& k : candidates_) names.push_back(k.name);
+    throw InputError(fmt::format("diagnose: --hypothesis {}: no such candidate for this scenario and recording "
+                                 "(candidates: {})", h.candidate, fmt::join(names, ", ")));
+  }
+  if (!(h.value >= c->lower && h.value <= c->upper))
+    throw InputError(fmt::format("diagnose: --hypothesis {}={}: outside the candidate's range [{}, {}]{}", h.candidate,
+                                 h.value, c->lower, c->upper, c->unit.empty() ? "" : " " + c->unit));
+  return *c;
+}
+
+// A cause the user suspects is one pre-stated test, not a search: the model as given with the
+// stated value on its own ensemble, judged as an accepted effect is, at alpha / (2 x the number
+// of hypotheses) (each may look twice). Nothing is applied to the model.
+void Diagnoser::test_hypotheses() {
+  const double level = options_.alpha / (2.0 * static_cast<double>(options_.hypotheses.size()));
+  for (const Hypothesis& h : options_.hypotheses) {
+    HypothesisTest t;
+    t.fit.candidate = hypothesis_candidate(h);
+    t.fit.value = h.value;
+    t.fit.standard_error = signal::kNaN;  // stated, not fitted
+    hypothesis_runs_.push_back(
+        on_ensemble(t.fit, "hypothesis", [&](const FittedCandidate& f) { return passes_at(f, level); }).runs);
+    t.supported = passes_at(t.fit, level);
+    d_.hypotheses.push_back(t);
+  }
+}
+
 // One round: false when no candidate passed (the search is over).
 bool Diagnoser::search_round(int number) {
   Round r = profiled(number);
@@ -1167,8 +1215,11 @@ std::size_t Diagnoser::first_passing(Round& r) {
 // improvement must hold on the held-out features. A physics candidate may be looked at twice
 // (test_physics), so each of its looks has half the level.
 bool Diagnoser::passes(const FittedCandidate& f, bool physics) const {
-  return f.p_value < options_.alpha / (tried_ * (physics ? 2 : 1)) && f.delta_bic > 0 &&
-         (!held_available_ || f.held_out_delta > 0);
+  return passes_at(f, options_.alpha / (tried_ * (physics ? 2 : 1)));
+}
+
+bool Diagnoser::passes_at(const FittedCandidate& f, double level) const {
+  return f.p_value < level && f.delta_bic > 0 && (!held_available_ || f.held_out_delta > 0);
 }
 
 // Scores f by the drop from the ensemble `before_runs` to `at_runs` (means over the perturbed
@@ -1217,29 +1268,39 @@ void Diagnoser::refine(Round& r, std::size_t i) {
 }
 
 void Diagnoser::test_physics(Round& r, std::size_t i) {
-  const Candidate& c = candidates_[i];
-  const Model model = applied(base_, c, r.fits[i].value);
-  const std::vector<Features>& runs = r.tested[i] =
-      search_.run(ensemble_jobs(model, recordings_, options_.ensemble, options_.table_gain_sd),
-                  fmt::format("round {}: ensemble at {}", r.number, c.name));
-  if (std::any_of(runs.begin(), runs.end(), Target::failed))
-    d_.notes.push_back(fmt::format("round {}: {} = {} did not run (time step?): not accepted", r.number, c.name,
-                                   format_value(c, r.fits[i].value)));
-  const auto [first, n] = compare(r.fits[i], ensemble_runs_, runs);
-  // A sequential test: with 6 members a stack's drop has an s.e. of 5-8, and case13 of the
-  // proof study failed with 6 and passed with 12. An undecided candidate's ensemble and the
-  // model's get M more members (the same seeds, paired) and it is judged once more on all 2M.
-  if (!undecided(r.fits[i], first, n, [&](const FittedCandidate& f) { return passes(f, true); })) return;
+  TestedEnsemble t = on_ensemble(r.fits[i], fmt::format("round {}", r.number),
+                                 [&](const FittedCandidate& f) { return passes(f, true); });
+  r.tested[i] = std::move(t.runs);
+  if (!t.extended.empty()) r.extended[i] = std::move(t.extended);
+}
+
+// Fit f's own ensemble at its value against the current model's (chaos depends on the model),
+// scored by compare and judged by `rule`. A sequential test: with 6 members a stack's drop has
+// an s.e. of 5-8, and case13 of the proof study failed with 6 and passed with 12. An
+// undecided candidate's ensemble and the model's get M more members (the same seeds, paired)
+// and it is judged once more on all 2M. `stage` ("round 2") labels progress and notes.
+TestedEnsemble Diagnoser::on_ensemble(FittedCandidate& f, const std::string& stage,
+                                      const std::function<bool(const FittedCandidate&)>& rule) {
+  const Candidate& c = f.candidate;
+  const Model model = applied(base_, c, f.value);
+  TestedEnsemble t;
+  t.runs = search_.run(ensemble_jobs(model, recordings_, options_.ensemble, options_.table_gain_sd),
+                       fmt::format("{}: ensemble at {}", stage, c.name));
+  if (std::any_of(t.runs.begin(), t.runs.end(), Target::failed))
+    d_.notes.push_back(fmt::format("{}: {} = {} did not run (time step?): not accepted", stage, c.name,
+                                   format_value(c, f.value)));
+  const auto [first, n] = compare(f, ensemble_runs_, t.runs);
+  if (!undecided(f, first, n, rule)) return t;
   const int m = options_.ensemble;
   if (ensemble_more_.empty())
     ensemble_more_ = search_.run(more_members(base_, recordings_, m, 2 * m, options_.table_gain_sd),
-                                 fmt::format("round {}: {} more members of the current model", r.number, m));
-  r.extended[i] = search_.run(more_members(model, recordings_, m, 2 * m, options_.table_gain_sd),
-                              fmt::format("round {}: {} more members at {}", r.number, m, c.name));
-  const Drop second = compare(r.fits[i], joined(ensemble_runs_, ensemble_more_), joined(runs, r.extended[i])).first;
-  d_.notes.push_back(fmt::format("round {}: {} undecided on {} members (chi2 {:.1f} +- {:.1f} lower); on {}: "
-                                 "{:.1f} +- {:.1f}", r.number, c.name, m, first.value, first.se, 2 * m, second.value,
-                                 second.se));
+                                 fmt::format("{}: {} more members of the current model", stage, m));
+  t.extended = search_.run(more_members(model, recordings_, m, 2 * m, options_.table_gain_sd),
+                           fmt::format("{}: {} more members at {}", stage, m, c.name));
+  const Drop second = compare(f, joined(ensemble_runs_, ensemble_more_), joined(t.runs, t.extended)).first;
+  d_.notes.push_back(fmt::format("{}: {} undecided on {} members (chi2 {:.1f} +- {:.1f} lower); on {}: {:.1f} +- {:.1f}",
+                                 stage, c.name, m, first.value, first.se, 2 * m, second.value, second.se));
+  return t;
 }
 
 void Diagnoser::test_sensor(Round& r, std::size_t i) {
@@ -1411,8 +1472,21 @@ void Diagnoser::finish() {
   // the mismatch report fires on one of 70 features one time in five with a right model).
   d_.unexplained = target_.mismatches(
       final_members, std::max(options_.z_threshold, family_wise_z(options_.alpha, static_cast<int>(target_.recorded.size()))));
+  against_improved(final_members);
   d_.simulations += search_.simulations;
   d_.improved = improved_scenario();
+}
+
+// Each hypothesis against the improved model, member by member (shared seeds), when the search
+// changed the model: which of the two causes the recording prefers.
+void Diagnoser::against_improved(const std::vector<Features>& final_members) {
+  for (std::size_t k = 0; k < d_.hypotheses.size() && !d_.effects.empty(); ++k) {
+    const Target pooled = make_target(measured_, {ensemble_runs_, hypothesis_runs_[k]}, search_, held_);
+    const Drop d = ensemble_drop(pooled, final_members, pooled, members_of(hypothesis_runs_[k], recordings_.size()), false);
+    HypothesisTest& h = d_.hypotheses[k];
+    h.improved_delta = d.value, h.improved_delta_se = d.se;
+    h.against_improved = exceeds(d, kIndistinguishable) ? "better" : exceeds({-d.value, d.se}, kIndistinguishable) ? "worse" : "alike";
+  }
 }
 
 // 4. The improved scenario: the user's, with the recording's bodies when it states none.

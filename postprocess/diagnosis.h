@@ -98,6 +98,12 @@ struct MeasurementIssue {
   std::string text;           // plain words
 };
 
+// --hypothesis NAME=VALUE: a cause the user suspects, tested on the ensemble before the search.
+struct Hypothesis {
+  std::string candidate;      // a candidate's name as the candidate table prints it: "edge_inset[block]"
+  double value = 0;           // SI, within the candidate's range
+};
+
 struct Options {
   int jobs = 2;               // simulations at a time
   int ensemble = 6;           // perturbed runs that measure the feature scatter
@@ -110,6 +116,7 @@ struct Options {
   double z_threshold = 3;     // |z| that flags a feature as mismatched
   double alpha = 0.01;        // family-wise error rate of the acceptance test (Holm)
   int max_effects = 3;        // iterations of the search
+  std::vector<Hypothesis> hypotheses;  // each tested against the model as given at alpha / (2 x their number)
   bool shooting = false;      // multiple shooting: cut single-body recordings at rests (shooting.h)
   std::string work_directory; // run directories (empty: a fresh temporary one, removed)
   std::function<void(const std::string& stage, long done, long total)> progress;
@@ -147,6 +154,15 @@ struct Effect {               // an accepted candidate
   int round = 0;              // the search round that accepted it (1 = first)
 };
 
+struct HypothesisTest {       // a --hypothesis: the model as given with the stated value, on its own ensemble
+  FittedCandidate fit;        // at the stated value (no s.e.: nothing fitted), scored as an accepted effect is
+  bool supported = false;     // passes the acceptance test at alpha / (2 x hypotheses): two looks each
+  std::string against_improved;  // effects were accepted: it fits "better", "worse" or "alike" than the improved
+                                 // model (the rule of similar candidates, docs/diagnose.md step 4); else empty
+  double improved_delta = 0, improved_delta_se = 0;  // chi2 of the improved model - chi2 at the hypothesis (> 0:
+                                                     // the hypothesis fits better), Monte Carlo s.e.
+};
+
 struct FeatureRow {           // one event feature, recorded and simulated
   std::string name, mode;
   double time = 0, recorded = 0, nominal = 0, improved = 0;  // nominal, improved: ensemble means (NaN: absent)
@@ -173,6 +189,7 @@ struct Diagnosis {
   double chi2_noise_limit = 0;                 // 99 % quantile of chi2(feature_count): consistent with noise below
   std::vector<std::vector<FittedCandidate>> rounds;  // every candidate's profile fit, per iteration
   std::vector<Effect> effects;
+  std::vector<HypothesisTest> hypotheses;     // Options::hypotheses, in their order
   std::vector<Mismatch> unexplained;           // still beyond the threshold after the accepted effects
   std::vector<std::string> notes;              // candidates left out and why, held-out choice, ...
   nlohmann::json improved;                     // the scenario with the effects as model options

@@ -96,6 +96,21 @@ Table candidate_table(const Diagnosis& d, std::size_t round) {
   return t;
 }
 
+Table hypothesis_table(const Diagnosis& d) {
+  Table t;
+  t.caption = "Hypotheses (--hypothesis): the model as given with the stated value, on its own ensemble";
+  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "p", "delta BIC",
+              "held-out delta chi2", "against the improved model"};
+  for (const HypothesisTest& h : d.hypotheses) {
+    const FittedCandidate& f = h.fit;
+    t.rows.push_back({text_cell(f.candidate.name, h.supported ? CellMark::good : CellMark::none), number_cell(f.value),
+                      number_cell(f.candidate.nominal), number_cell(f.delta), number_cell(f.delta_se),
+                      number_cell(f.p_value, 2), number_cell(f.delta_bic), number_cell(f.held_out_delta),
+                      text_cell(h.against_improved)});
+  }
+  return t;
+}
+
 Table feature_table(const Diagnosis& d, double threshold) {
   Table t;
   t.caption = fmt::format("Event features: recorded against the model as given and improved (ensemble means; n/a: "
@@ -123,6 +138,7 @@ void add_diagnosis_sections(HtmlReport& report, const Diagnosis& d) {
                                                "the model as given (dashed) and the improved model");
   report.add_section("Candidates");
   for (std::size_t r = 0; r < d.rounds.size(); ++r) report.add_table(candidate_table(d, r));
+  if (!d.hypotheses.empty()) report.add_table(hypothesis_table(d));
   report.add_section("Event features");
   report.add_table(feature_table(d, d.z_threshold));
 }

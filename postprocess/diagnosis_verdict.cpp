@@ -50,6 +50,20 @@ std::string effect_words(const Effect& e) {
                      similar_words(e));
 }
 
+// A --hypothesis: supported or not against the model as given, and against the improved one.
+std::string hypothesis_words(const HypothesisTest& h) {
+  const FittedCandidate& f = h.fit;
+  std::string v = fmt::format("Hypothesis {} = {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
+                              "given, p = {:.2g}, dBIC {:.1f}, held-out improvement {:.1f}.",
+                              f.candidate.name, format_value(f.candidate, f.value), f.candidate.description,
+                              h.supported ? "supported" : "not supported", f.chi2 + f.delta, f.chi2, f.delta_se,
+                              f.p_value, f.delta_bic, f.held_out_delta);
+  if (!h.against_improved.empty())
+    v += fmt::format(" Against the improved model it fits {} (its chi2 {:.1f} +- {:.1f} {}).", h.against_improved,
+                     std::abs(h.improved_delta), h.improved_delta_se, h.improved_delta >= 0 ? "lower" : "higher");
+  return v + "\n";
+}
+
 // Where the search ended: within the noise (with or without effects), or what is unexplained.
 std::string closing_words(const Diagnosis& d) {
   const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
@@ -91,6 +105,7 @@ std::string verdict_text(const Diagnosis& d) {
                      d.mismatches.size(), d.feature_count, d.z_threshold);
   }
   for (const Effect& e : d.effects) v += effect_words(e);
+  for (const HypothesisTest& h : d.hypotheses) v += hypothesis_words(h);
   return v + closing_words(d);
 }
 
@@ -139,6 +154,13 @@ json diagnosis_json(const Diagnosis& d) {
               {"candidates_tried", e.candidates_tried}, {"round", e.round}});
     if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
     out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);
+  }
+  out["hypotheses"] = json::array();
+  for (const HypothesisTest& h : d.hypotheses) {
+    json j = fitted(h.fit);
+    j["supported"] = h.supported;
+    if (!h.against_improved.empty()) j.update({{"against_improved", h.against_improved}, {"improved_delta_chi2", h.improved_delta}, {"improved_delta_chi2_se", h.improved_delta_se}});
+    out["hypotheses"].push_back(j);
   }
   out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();
   for (const Mismatch& m : d.mismatches) out["mismatches"].push_back(mismatch(m));

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
@@ -27,6 +28,7 @@ struct DiagnoseOptions {
   std::string output;               // improved scenario
   std::string json_file;            // --json
   std::string report;               // --report (HTML)
+  std::vector<std::string> hypotheses;  // --hypothesis NAME=VALUE
   diagnosis::Options options;
 };
 
@@ -44,6 +46,23 @@ void print_candidates(const diagnosis::Diagnosis& d) {
       fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>8.1f} {:>9.2g} {:>9.1f} {:>9.1f}\n", f.candidate.name, f.value,
                  f.delta, f.delta_se, f.p_value, f.delta_bic, f.held_out_delta);
   }
+}
+
+// NAME=VALUE, split at the last '=' (a name has none); the value a finite number.
+diagnosis::Hypothesis parsed_hypothesis(const std::string& text) {
+  const std::size_t eq = text.rfind('=');
+  diagnosis::Hypothesis h;
+  std::size_t used = 0;
+  try {
+    if (eq != std::string::npos) h.value = std::stod(text.substr(eq + 1), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (eq == std::string::npos || eq == 0 || used == 0 || used != text.size() - eq - 1 || !std::isfinite(h.value))
+    throw InputError(fmt::format("diagnose: --hypothesis {}: expected NAME=VALUE with VALUE a number in SI units, "
+                                 "e.g. edge_inset[block]=0.01", text));
+  h.candidate = text.substr(0, eq);
+  return h;
 }
 
 // The scenario with its table records' paths made absolute: relative ones resolve from the
@@ -70,6 +89,7 @@ int diagnose_command(DiagnoseOptions& o) {
     }
   }
   if (recordings.empty()) throw InputError("diagnose: no recording given (NAME.csv with NAME.nominal.json, or NAME.h5)");
+  for (const std::string& h : o.hypotheses) o.options.hypotheses.push_back(parsed_hypothesis(h));
   fmt::print("freestand diagnose: {} recording{} against {}, {} jobs\n", recordings.size(),
              recordings.size() > 1 ? "s" : "", scenario_path.empty() ? "the recordings' nominal" : scenario_path,
              o.options.jobs);
@@ -152,6 +172,11 @@ void add_diagnose_command(CLI::App& app) {
   sub->add_option("--max-effects", o->options.max_effects, "effects searched for at most")
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
+  sub->add_option("--hypothesis", o->hypotheses,
+                  "NAME=VALUE (repeatable): test a cause you suspect before the search, e.g. edge_inset[block]=0.01 "
+                  "(candidate names as the candidate table prints them, values in SI): the model as given with that "
+                  "value, on its own ensemble, judged as an accepted effect is and compared with the improved model")
+      ->allow_extra_args(false);  // one NAME=VALUE per --hypothesis: the recordings that follow stay inputs
   sub->add_flag("--shooting", o->options.shooting,
                 "multiple shooting: cut a single-body recording where the body rests before a motion episode and "
                 "start each piece from the measured rest state (docs/diagnose.md)");

@@ -209,7 +209,10 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   truth["bodies"][0]["base"] = {{"edge_inset", 0.015}};
   Recording recording = rocking_recording(truth, dir, 14);
   for (json& b : recording.nominal["bodies"]) b.erase("base");  // concealed: the experimenter believes the edges sharp
-  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, fast_options(dir));
+  // The user suspects two causes (--hypothesis): the truth, and a centre of mass off by 10 mm.
+  diagnosis::Options o = fast_options(dir);
+  o.hypotheses = {{"edge_inset[block]", 0.015}, {"com_offset_x[block]", 0.01}};
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
   std::cerr << d.verdict;
   ASSERT_FALSE(d.effects.empty());
   EXPECT_EQ(d.effects.front().fit.candidate.entry, "edge_inset");
@@ -231,6 +234,14 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   ASSERT_NE(rival, round.end());
   EXPECT_GT(rival->delta_se, 0);
   EXPECT_TRUE(d.effects.front().indistinguishable.empty());
+  // The true cause stated as a hypothesis is supported and fits as the found inset does (the
+  // same model up to the fit's error); the wrong one fits worse than the improved model.
+  ASSERT_EQ(d.hypotheses.size(), 2u);
+  EXPECT_TRUE(d.hypotheses[0].supported);
+  EXPECT_EQ(d.hypotheses[0].against_improved, "alike");
+  EXPECT_EQ(d.hypotheses[1].against_improved, "worse");
+  EXPECT_EQ(diagnosis::diagnosis_json(d)["hypotheses"].size(), 2u);
+  EXPECT_NE(d.verdict.find("Hypothesis edge_inset[block] = 0.015 m"), std::string::npos);
 }
 
 // A contact ten times softer than stated also moves the pivot inward (the block sinks into its
@@ -575,6 +586,18 @@ TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
   r.channels = {{"block.x", std::vector<double>(400, 0.0)}};
   EXPECT_THROW(diagnosis::diagnose(model(0.3), {r}, fast_options(dir)), InputError);
   r.channels = {{"block.rock_x", std::vector<double>(400, 0.0)}};
+  // A hypothesis must name a candidate of this scenario and lie in its range, before any run.
+  for (const diagnosis::Hypothesis& h : {diagnosis::Hypothesis{"edge_inset[statue]", 0.01},
+                                         diagnosis::Hypothesis{"edge_inset[block]", 0.5}}) {
+    diagnosis::Options o = fast_options(dir);
+    o.hypotheses = {h};
+    try {
+      diagnosis::diagnose(model(0.3), {r}, o);
+      FAIL();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--hypothesis " + h.candidate), std::string::npos) << e.what();
+    }
+  }
   diagnosis::Options more_than_the_ensemble = fast_options(dir);
   more_than_the_ensemble.profile_members = more_than_the_ensemble.ensemble + 1;
   try {
