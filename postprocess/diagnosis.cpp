@@ -983,7 +983,8 @@ class Diagnoser {
   void run_ensemble(const std::string& stage);
   void check_grid();
   void measure();
-  const Candidate& hypothesis_candidate(const Hypothesis& h) const;
+  const Candidate& hypothesis_candidate(const StatedValue& v) const;
+  Candidate joint_candidate(const Hypothesis& h) const;
   void test_hypotheses();
   bool search_round(int number);
   Round profiled(int number);
@@ -1034,7 +1035,8 @@ class Diagnoser {
 Diagnosis Diagnoser::run() {
   // The candidates first (no simulation): a hypothesis that names none is refused before any run.
   candidates_ = candidates_for(base_.front(), recordings_.front(), options_.table_gain_sd, &d_.notes);
-  for (const Hypothesis& h : options_.hypotheses) hypothesis_candidate(h);
+  for (const Hypothesis& h : options_.hypotheses)
+    for (const StatedValue& v : h) hypothesis_candidate(v);
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle
   // noise, each with its own noise realisation.
   run_ensemble("nominal and ensemble");
@@ -1116,7 +1118,7 @@ void Diagnoser::measure() {
 }
 
 // The candidate a hypothesis names, its value checked against the candidate's range.
-const Candidate& Diagnoser::hypothesis_candidate(const Hypothesis& h) const {
+const Candidate& Diagnoser::hypothesis_candidate(const StatedValue& h) const {
   const auto c = std::find_if(candidates_.begin(), candidates_.end(),
                               [&](const Candidate& k) { return k.name == h.candidate; });
   if (c == candidates_.end()) {
@@ -1131,15 +1133,40 @@ const Candidate& Diagnoser::hypothesis_candidate(const Hypothesis& h) const {
   return *c;
 }
 
+// One candidate that sets every value of h (its own value argument unused): a single value's
+// candidate as it is, several joined ("a + b", no common unit or nominal).
+Candidate Diagnoser::joint_candidate(const Hypothesis& h) const {
+  if (h.size() == 1) return hypothesis_candidate(h.front());
+  Candidate joint;
+  std::vector<std::string> names, descriptions;
+  std::vector<std::pair<Candidate, double>> parts;
+  for (const StatedValue& v : h) {
+    parts.push_back({hypothesis_candidate(v), v.value});
+    names.push_back(v.candidate), descriptions.push_back(parts.back().first.description);
+  }
+  joint.name = fmt::format("{}", fmt::join(names, " + "));
+  joint.entry = parts.front().first.entry;
+  joint.description = fmt::format("{}", fmt::join(descriptions, "; "));
+  joint.nominal = signal::kNaN;
+  joint.apply = [parts](json& d, double) {
+    for (const auto& [c, value] : parts) c.apply(d, value);
+  };
+  return joint;
+}
+
 // A cause the user suspects is one pre-stated test, not a search: the model as given with the
 // stated value on its own ensemble, judged as an accepted effect is, at alpha / (2 x the number
-// of hypotheses) (each may look twice). Nothing is applied to the model.
+// of hypotheses) (each may look twice). Nothing is applied to the model. A stated value is a
+// simple alternative, and the chi2_1 tail of a fitted one is conservative for it: for a model
+// shifted by delta (in s.d.), D = 2 delta Z - delta^2 and (x + delta^2) / (2 delta) >= sqrt(x), so
+// P(D > x) <= P(chi2_1 > x) / 2 whatever the values, one or several set together.
 void Diagnoser::test_hypotheses() {
   const double level = options_.alpha / (2.0 * static_cast<double>(options_.hypotheses.size()));
   for (const Hypothesis& h : options_.hypotheses) {
     HypothesisTest t;
-    t.fit.candidate = hypothesis_candidate(h);
-    t.fit.value = h.value;
+    t.stated = h;
+    t.fit.candidate = joint_candidate(h);
+    t.fit.value = h.size() == 1 ? h.front().value : signal::kNaN;
     t.fit.standard_error = signal::kNaN;  // stated, not fitted
     hypothesis_runs_.push_back(
         on_ensemble(t.fit, "hypothesis", [&](const FittedCandidate& f) { return passes_at(f, level); }).runs);

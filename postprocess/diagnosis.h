@@ -98,11 +98,14 @@ struct MeasurementIssue {
   std::string text;           // plain words
 };
 
-// --hypothesis NAME=VALUE: a cause the user suspects, tested on the ensemble before the search.
-struct Hypothesis {
+// One candidate's value in a --hypothesis.
+struct StatedValue {
   std::string candidate;      // a candidate's name as the candidate table prints it: "edge_inset[block]"
   double value = 0;           // SI, within the candidate's range
 };
+// --hypothesis NAME=VALUE[,NAME=VALUE...]: a cause the user suspects (values set together, e.g. the
+// restitution of every interface of a stack), tested on the ensemble before the search.
+using Hypothesis = std::vector<StatedValue>;
 
 struct Options {
   int jobs = 2;               // simulations at a time
@@ -155,7 +158,9 @@ struct Effect {               // an accepted candidate
 };
 
 struct HypothesisTest {       // a --hypothesis: the model as given with the stated value, on its own ensemble
-  FittedCandidate fit;        // at the stated value (no s.e.: nothing fitted), scored as an accepted effect is
+  Hypothesis stated;
+  FittedCandidate fit;        // at the stated values (one candidate setting them all; no s.e.: nothing fitted),
+                              // scored as an accepted effect is
   bool supported = false;     // passes the acceptance test at alpha / (2 x hypotheses): two looks each
   std::string against_improved;  // effects were accepted: it fits "better", "worse" or "alike" than the improved
                                  // model (the rule of similar candidates, docs/diagnose.md step 4); else empty

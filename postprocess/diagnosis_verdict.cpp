@@ -53,9 +53,13 @@ std::string effect_words(const Effect& e) {
 // A --hypothesis: supported or not against the model as given, and against the improved one.
 std::string hypothesis_words(const HypothesisTest& h) {
   const FittedCandidate& f = h.fit;
-  std::string v = fmt::format("Hypothesis {} = {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
+  std::vector<std::string> values;
+  for (const StatedValue& s : h.stated)
+    values.push_back(h.stated.size() == 1 ? fmt::format("{} = {}", s.candidate, format_value(f.candidate, s.value))
+                                          : fmt::format("{} = {:.3g}", s.candidate, s.value));
+  std::string v = fmt::format("Hypothesis {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
                               "given, p = {:.2g}, dBIC {:.1f}, held-out improvement {:.1f}.",
-                              f.candidate.name, format_value(f.candidate, f.value), f.candidate.description,
+                              fmt::join(values, ", "), f.candidate.description,
                               h.supported ? "supported" : "not supported", f.chi2 + f.delta, f.chi2, f.delta_se,
                               f.p_value, f.delta_bic, f.held_out_delta);
   if (!h.against_improved.empty())
@@ -159,6 +163,8 @@ json diagnosis_json(const Diagnosis& d) {
   for (const HypothesisTest& h : d.hypotheses) {
     json j = fitted(h.fit);
     j["supported"] = h.supported;
+    j["stated"] = json::array();
+    for (const StatedValue& s : h.stated) j["stated"].push_back({{"candidate", s.candidate}, {"value", s.value}});
     if (!h.against_improved.empty()) j.update({{"against_improved", h.against_improved}, {"improved_delta_chi2", h.improved_delta}, {"improved_delta_chi2_se", h.improved_delta_se}});
     out["hypotheses"].push_back(j);
   }

@@ -49,20 +49,31 @@ void print_candidates(const diagnosis::Diagnosis& d) {
 }
 
 // NAME=VALUE, split at the last '=' (a name has none); the value a finite number.
-diagnosis::Hypothesis parsed_hypothesis(const std::string& text) {
+diagnosis::StatedValue parsed_value(const std::string& text, const std::string& option) {
   const std::size_t eq = text.rfind('=');
-  diagnosis::Hypothesis h;
+  diagnosis::StatedValue v;
   std::size_t used = 0;
   try {
-    if (eq != std::string::npos) h.value = std::stod(text.substr(eq + 1), &used);
+    if (eq != std::string::npos) v.value = std::stod(text.substr(eq + 1), &used);
   } catch (const std::exception&) {
     used = 0;
   }
-  if (eq == std::string::npos || eq == 0 || used == 0 || used != text.size() - eq - 1 || !std::isfinite(h.value))
-    throw InputError(fmt::format("diagnose: --hypothesis {}: expected NAME=VALUE with VALUE a number in SI units, "
-                                 "e.g. edge_inset[block]=0.01", text));
-  h.candidate = text.substr(0, eq);
-  return h;
+  if (eq == std::string::npos || eq == 0 || used == 0 || used != text.size() - eq - 1 || !std::isfinite(v.value))
+    throw InputError(fmt::format("diagnose: --hypothesis {}: expected NAME=VALUE[,NAME=VALUE...] with each VALUE a "
+                                 "number in SI units, e.g. edge_inset[block]=0.01", option));
+  v.candidate = text.substr(0, eq);
+  return v;
+}
+
+// NAME=VALUE[,NAME=VALUE...]: the values one hypothesis sets together.
+diagnosis::Hypothesis parsed_hypothesis(const std::string& text) {
+  diagnosis::Hypothesis h;
+  std::size_t from = 0;
+  for (std::size_t comma = text.find(','); ; comma = text.find(',', from)) {
+    h.push_back(parsed_value(text.substr(from, comma - from), text));
+    if (comma == std::string::npos) return h;
+    from = comma + 1;
+  }
 }
 
 // The scenario with its table records' paths made absolute: relative ones resolve from the
@@ -173,9 +184,10 @@ void add_diagnose_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
   sub->add_option("--hypothesis", o->hypotheses,
-                  "NAME=VALUE (repeatable): test a cause you suspect before the search, e.g. edge_inset[block]=0.01 "
-                  "(candidate names as the candidate table prints them, values in SI): the model as given with that "
-                  "value, on its own ensemble, judged as an accepted effect is and compared with the improved model")
+                  "NAME=VALUE[,NAME=VALUE...] (repeatable): test a cause you suspect before the search, e.g. "
+                  "edge_inset[block]=0.01 (candidate names as the candidate table prints them, values in SI; values "
+                  "joined by commas are set together): the model as given with them, on its own ensemble, judged as an "
+                  "accepted effect is and compared with the improved model")
       ->allow_extra_args(false);  // one NAME=VALUE per --hypothesis: the recordings that follow stay inputs
   sub->add_flag("--shooting", o->options.shooting,
                 "multiple shooting: cut a single-body recording where the body rests before a motion episode and "

@@ -211,7 +211,7 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   for (json& b : recording.nominal["bodies"]) b.erase("base");  // concealed: the experimenter believes the edges sharp
   // The user suspects two causes (--hypothesis): the truth, and a centre of mass off by 10 mm.
   diagnosis::Options o = fast_options(dir);
-  o.hypotheses = {{"edge_inset[block]", 0.015}, {"com_offset_x[block]", 0.01}};
+  o.hypotheses = {{{"edge_inset[block]", 0.015}}, {{"com_offset_x[block]", 0.01}}};
   const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
   std::cerr << d.verdict;
   ASSERT_FALSE(d.effects.empty());
@@ -587,10 +587,10 @@ TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
   EXPECT_THROW(diagnosis::diagnose(model(0.3), {r}, fast_options(dir)), InputError);
   r.channels = {{"block.rock_x", std::vector<double>(400, 0.0)}};
   // A hypothesis must name a candidate of this scenario and lie in its range, before any run.
-  for (const diagnosis::Hypothesis& h : {diagnosis::Hypothesis{"edge_inset[statue]", 0.01},
-                                         diagnosis::Hypothesis{"edge_inset[block]", 0.5}}) {
+  for (const diagnosis::StatedValue& h : {diagnosis::StatedValue{"edge_inset[statue]", 0.01},
+                                          diagnosis::StatedValue{"edge_inset[block]", 0.5}}) {
     diagnosis::Options o = fast_options(dir);
-    o.hypotheses = {h};
+    o.hypotheses = {{{"restitution[table/block]", 0.3}, h}};
     try {
       diagnosis::diagnose(model(0.3), {r}, o);
       FAIL();
