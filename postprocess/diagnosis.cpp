@@ -524,6 +524,12 @@ double to_scaled(const Candidate& c, double v) {
 // in scaled units times this is the s.e. reported.
 double scaled_unit(const Candidate& c) { return c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower; }
 
+// How the model after a chi2 drop d fits against the one before: "better" or "worse" beyond
+// the Monte Carlo bound and kIndistinguishable, else "alike" (similar candidates meet so).
+std::string preference(const Drop& d) {
+  return exceeds(d, kIndistinguishable) ? "better" : exceeds({-d.value, d.se}, kIndistinguishable) ? "worse" : "alike";
+}
+
 Model applied(const Model& base, const Candidate& c, double value) {
   Model m = base;
   for (json& d : m) c.apply(d, value);
@@ -1173,6 +1179,14 @@ void Diagnoser::test_hypotheses() {
     t.supported = passes_at(t.fit, level);
     d_.hypotheses.push_back(t);
   }
+  // Rival causes meet each other too, on every feature: nothing was fitted to any of them.
+  for (std::size_t i = 0; i < hypothesis_runs_.size(); ++i)
+    for (std::size_t j = i + 1; j < hypothesis_runs_.size(); ++j) {
+      const Target pooled = make_target(measured_, {hypothesis_runs_[i], hypothesis_runs_[j]}, search_, held_);
+      const Drop d = ensemble_drop(pooled, members_of(hypothesis_runs_[i], recordings_.size()), pooled,
+                                   members_of(hypothesis_runs_[j], recordings_.size()), std::nullopt);
+      d_.hypothesis_pairs.push_back({i, j, d.value, d.se, preference(d)});
+    }
 }
 
 // One round: false when no candidate passed (the search is over).
@@ -1512,7 +1526,7 @@ void Diagnoser::against_improved(const std::vector<Features>& final_members) {
     const Drop d = ensemble_drop(pooled, final_members, pooled, members_of(hypothesis_runs_[k], recordings_.size()), false);
     HypothesisTest& h = d_.hypotheses[k];
     h.improved_delta = d.value, h.improved_delta_se = d.se;
-    h.against_improved = exceeds(d, kIndistinguishable) ? "better" : exceeds({-d.value, d.se}, kIndistinguishable) ? "worse" : "alike";
+    h.against_improved = preference(d);
   }
 }
 

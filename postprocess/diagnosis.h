@@ -168,6 +168,12 @@ struct HypothesisTest {       // a --hypothesis: the model as given with the sta
                                                      // the hypothesis fits better), Monte Carlo s.e.
 };
 
+struct HypothesisComparison {  // two --hypothesis met member by member (shared seeds, pooled scatter, all features)
+  std::size_t first = 0, second = 0;  // indices in Diagnosis::hypotheses, first < second
+  double delta = 0, delta_se = 0;     // chi2 at the first - chi2 at the second (> 0: the second fits better), MC s.e.
+  std::string second_fits;            // "better", "worse" or "alike" than the first (the rule of similar candidates)
+};
+
 struct FeatureRow {           // one event feature, recorded and simulated
   std::string name, mode;
   double time = 0, recorded = 0, nominal = 0, improved = 0;  // nominal, improved: ensemble means (NaN: absent)
@@ -195,6 +201,7 @@ struct Diagnosis {
   std::vector<std::vector<FittedCandidate>> rounds;  // every candidate's profile fit, per iteration
   std::vector<Effect> effects;
   std::vector<HypothesisTest> hypotheses;     // Options::hypotheses, in their order
+  std::vector<HypothesisComparison> hypothesis_pairs;  // every two of them
   std::vector<Mismatch> unexplained;           // still beyond the threshold after the accepted effects
   std::vector<std::string> notes;              // candidates left out and why, held-out choice, ...
   nlohmann::json improved;                     // the scenario with the effects as model options

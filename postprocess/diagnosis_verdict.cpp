@@ -51,15 +51,15 @@ std::string effect_words(const Effect& e) {
 }
 
 // A --hypothesis: supported or not against the model as given, and against the improved one.
-std::string hypothesis_words(const HypothesisTest& h) {
+std::string hypothesis_words(const HypothesisTest& h, std::size_t number) {
   const FittedCandidate& f = h.fit;
   std::vector<std::string> values;
   for (const StatedValue& s : h.stated)
     values.push_back(h.stated.size() == 1 ? fmt::format("{} = {}", s.candidate, format_value(f.candidate, s.value))
                                           : fmt::format("{} = {:.3g}", s.candidate, s.value));
-  std::string v = fmt::format("Hypothesis {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
+  std::string v = fmt::format("Hypothesis {}: {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
                               "given, p = {:.2g}, dBIC {:.1f}, held-out improvement {:.1f}.",
-                              fmt::join(values, ", "), f.candidate.description,
+                              number, fmt::join(values, ", "), f.candidate.description,
                               h.supported ? "supported" : "not supported", f.chi2 + f.delta, f.chi2, f.delta_se,
                               f.p_value, f.delta_bic, f.held_out_delta);
   if (!h.against_improved.empty())
@@ -109,7 +109,11 @@ std::string verdict_text(const Diagnosis& d) {
                      d.mismatches.size(), d.feature_count, d.z_threshold);
   }
   for (const Effect& e : d.effects) v += effect_words(e);
-  for (const HypothesisTest& h : d.hypotheses) v += hypothesis_words(h);
+  for (std::size_t k = 0; k < d.hypotheses.size(); ++k) v += hypothesis_words(d.hypotheses[k], k + 1);
+  for (const HypothesisComparison& c : d.hypothesis_pairs)
+    v += fmt::format("Hypothesis {} against {}: fits {} (its chi2 {:.1f} +- {:.1f} {}, every feature).\n",
+                     c.second + 1, c.first + 1, c.second_fits, std::abs(c.delta), c.delta_se,
+                     c.delta >= 0 ? "lower" : "higher");
   return v + closing_words(d);
 }
 
@@ -168,6 +172,10 @@ json diagnosis_json(const Diagnosis& d) {
     if (!h.against_improved.empty()) j.update({{"against_improved", h.against_improved}, {"improved_delta_chi2", h.improved_delta}, {"improved_delta_chi2_se", h.improved_delta_se}});
     out["hypotheses"].push_back(j);
   }
+  out["hypothesis_pairs"] = json::array();
+  for (const HypothesisComparison& c : d.hypothesis_pairs)
+    out["hypothesis_pairs"].push_back({{"first", c.first}, {"second", c.second}, {"delta_chi2", c.delta},
+                                       {"delta_chi2_se", c.delta_se}, {"second_fits", c.second_fits}});
   out["mismatches"] = out["unexplained"] = out["divergence"] = out["candidates"] = json::array();
   for (const Mismatch& m : d.mismatches) out["mismatches"].push_back(mismatch(m));
   for (const Mismatch& m : d.unexplained) out["unexplained"].push_back(mismatch(m));

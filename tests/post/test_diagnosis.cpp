@@ -241,7 +241,10 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   EXPECT_EQ(d.hypotheses[0].against_improved, "alike");
   EXPECT_EQ(d.hypotheses[1].against_improved, "worse");
   EXPECT_EQ(diagnosis::diagnosis_json(d)["hypotheses"].size(), 2u);
-  EXPECT_NE(d.verdict.find("Hypothesis edge_inset[block] = 0.015 m"), std::string::npos);
+  EXPECT_NE(d.verdict.find("Hypothesis 1: edge_inset[block] = 0.015 m"), std::string::npos);
+  // Met with each other, the COM offset fits worse than the true inset.
+  ASSERT_EQ(d.hypothesis_pairs.size(), 1u);
+  EXPECT_EQ(d.hypothesis_pairs[0].second_fits, "worse");
 }
 
 // A contact ten times softer than stated also moves the pivot inward (the block sinks into its
