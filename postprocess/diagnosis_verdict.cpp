@@ -50,6 +50,11 @@ std::string effect_words(const Effect& e) {
                      similar_words(e));
 }
 
+// A chi2 difference between two models, the second's "lower" when delta > 0.
+std::string difference_words(double delta, double se) {
+  return fmt::format("its chi2 {:.1f} +- {:.1f} {}", std::abs(delta), se, delta >= 0 ? "lower" : "higher");
+}
+
 // A --hypothesis: supported or not against the model as given, and against the improved one.
 std::string hypothesis_words(const HypothesisTest& h, std::size_t number) {
   const FittedCandidate& f = h.fit;
@@ -63,8 +68,8 @@ std::string hypothesis_words(const HypothesisTest& h, std::size_t number) {
                               h.supported ? "supported" : "not supported", f.chi2 + f.delta, f.chi2, f.delta_se,
                               f.p_value, f.delta_bic, f.held_out_delta);
   if (!h.against_improved.empty())
-    v += fmt::format(" Against the improved model it fits {} (its chi2 {:.1f} +- {:.1f} {}).", h.against_improved,
-                     std::abs(h.improved_delta), h.improved_delta_se, h.improved_delta >= 0 ? "lower" : "higher");
+    v += fmt::format(" Against the improved model it fits {} ({}).", h.against_improved,
+                     difference_words(h.improved_delta, h.improved_delta_se));
   return v + "\n";
 }
 
@@ -111,9 +116,8 @@ std::string verdict_text(const Diagnosis& d) {
   for (const Effect& e : d.effects) v += effect_words(e);
   for (std::size_t k = 0; k < d.hypotheses.size(); ++k) v += hypothesis_words(d.hypotheses[k], k + 1);
   for (const HypothesisComparison& c : d.hypothesis_pairs)
-    v += fmt::format("Hypothesis {} against {}: fits {} (its chi2 {:.1f} +- {:.1f} {}, every feature).\n",
-                     c.second + 1, c.first + 1, c.second_fits, std::abs(c.delta), c.delta_se,
-                     c.delta >= 0 ? "lower" : "higher");
+    v += fmt::format("Hypothesis {} against {}: fits {} ({}, every feature).\n", c.second + 1, c.first + 1,
+                     c.second_fits, difference_words(c.delta, c.delta_se));
   return v + closing_words(d);
 }
 
