@@ -1153,7 +1153,7 @@ Candidate Diagnoser::joint_candidate(const Hypothesis& h) const {
   joint.name = fmt::format("{}", fmt::join(names, " + "));
   joint.entry = parts.front().first.entry;
   joint.description = fmt::format("{}", fmt::join(descriptions, "; "));
-  joint.nominal = signal::kNaN;
+  joint.nominal = joint.lower = joint.upper = signal::kNaN;  // no common scale: null in the JSON
   joint.apply = [parts](json& d, double) {
     for (const auto& [c, value] : parts) c.apply(d, value);
   };
