@@ -3,7 +3,10 @@
 # (single bodies and the tower on its pedestal, six ground-motion windows) and
 # four cases with no effect, from bench/diagnose_cases.json.
 #
-#   bench/generate_diagnose_cases.sh [OUT]     (default OUT: out/diagnose_cases)
+#   bench/generate_diagnose_cases.sh [OUT [GENERATE OPTIONS...]]   (default OUT: out/diagnose_cases)
+#
+# e.g. `--concealment within_scatter` for the second reading of the criterion,
+# `--cache DIR` to reuse another set's runs.
 #
 # OUT/recordings: NAME.csv + NAME.nominal.json and manifest.json, what
 # `freestand diagnose` may read. OUT/answers: NAME.answer.json (the concealed
@@ -18,7 +21,8 @@ out=${1:-out/diagnose_cases}
 tool=${FREESTAND_TOOL:-$root/build/freestand}  # a copy keeps generation off a rebuild
 [ -x "$tool" ] || { echo "build first: scripts/build.sh" >&2; exit 1; }
 start=$(date +%s)
-"$tool" generate "$root/bench/diagnose_cases.json" -o "$out/recordings" --answers "$out/answers" -j 2 --keep-going
+"$tool" generate "$root/bench/diagnose_cases.json" -o "$out/recordings" --answers "$out/answers" -j 2 --keep-going \
+  "${@:2}"
 echo "wall time: $(( $(date +%s) - start )) s"
 /usr/bin/python3 - "$out/answers/answers.json" <<'PY'
 import json, sys

@@ -53,6 +53,15 @@ struct Perturbation {
   double omega = 1e-3;         // rad/s, each axis
 };
 
+// When an effect counts as concealed, E the global RMS error against the
+// nominal model's prediction (docs/diagnose-cases.md, "The concealment criterion").
+enum class Concealment {
+  kPairedChange,   // |E(with) - E(same draw without)| <= sd of E over the perturbed draws
+  kWithinScatter,  // E(with) <= the largest E of the draws without it (same and perturbed)
+};
+// "paired_change" or "within_scatter"; InputError naming `where` otherwise.
+Concealment concealment_rule(const std::string& name, const std::string& where);
+
 // The concealed effect: a catalogue name (effect_catalogue()) or "none".
 // magnitude < 0: the largest concealed magnitude is searched from the
 // catalogue's start value by halving (or doubling up to its max).
@@ -60,6 +69,7 @@ struct ConcealedEffect {
   std::string name = "none";
   double magnitude = -1.0;
   std::string body;            // target body (default: the top body)
+  Concealment rule = Concealment::kPairedChange;  // what "concealed" means
 };
 
 struct CaseSpec {

@@ -24,6 +24,7 @@ struct GenerateOptions {
   std::string answers;     // NAME.answer.json, NAME.model.*, answers.json
   std::string cache;       // simulation runs (default: ANSWERS/runs)
   std::vector<std::string> only;  // case names to generate (default: all)
+  std::string concealment;  // overrides every case's effect.concealment when set
   int jobs = 2;
   bool keep_going = false;
 };
@@ -54,7 +55,9 @@ int generate(const GenerateOptions& o) {
   const std::string cache = o.cache.empty() ? (fs::path(o.answers) / "runs").string() : o.cache;
   check_folders_apart(o.recordings, o.answers);  // before any simulation; the runs hold the truth too
   check_folders_apart(o.recordings, cache);
-  const std::vector<CaseSpec> cases = read_case_file(o.cases);
+  std::vector<CaseSpec> cases = read_case_file(o.cases);
+  if (!o.concealment.empty())
+    for (CaseSpec& spec : cases) spec.effect.rule = concealment_rule(o.concealment, "--concealment");
   nlohmann::json manifest = nlohmann::json::array(), answers = nlohmann::json::array(),
                  failed = nlohmann::json::array();
   std::set<std::string> done;
@@ -67,10 +70,10 @@ int generate(const GenerateOptions& o) {
       const GeneratedCase generated = generate_case(spec, cache, o.jobs);
       write_case(generated, spec.name, o.recordings, o.answers);
       const nlohmann::json& c = generated.answer["concealment"];
-      fmt::print("  magnitude {} {}: RMS error change {:.3g} m, scatter {:.3g} m, effect alone {:.3g} m\n",
+      fmt::print("  magnitude {} {} ({}): RMS error change {:.3g} m, scatter {:.3g} m, effect alone {:.3g} m\n",
                  generated.answer["effect"]["magnitude"].get<double>(),
-                 generated.answer["effect"]["unit"].get<std::string>(), c["change"].get<double>(),
-                 c["scatter"].get<double>(), c["effect_rms"].get<double>());
+                 generated.answer["effect"]["unit"].get<std::string>(), c["rule"].get<std::string>(),
+                 c["change"].get<double>(), c["scatter"].get<double>(), c["effect_rms"].get<double>());
       manifest.push_back({{"recording", spec.name + ".csv"},
                           {"nominal", spec.name + ".nominal.json"},
                           {"ground_motion", generated.recording.nominal["ground_motion"]},
@@ -119,6 +122,10 @@ void add_generate_command(CLI::App& app) {
   sub->add_option("--answers", options->answers, "folder for the answer keys (never the recordings' folder)")
       ->required();
   sub->add_option("--cache", options->cache, "folder for the simulation runs, reused (default: ANSWERS/runs)");
+  sub->add_option("--concealment", options->concealment,
+                  "what concealed means, for every case (default: each case's effect.concealment, paired_change):\n"
+                  "paired_change or within_scatter (docs/diagnose-cases.md)")
+      ->check(CLI::IsMember({"paired_change", "within_scatter"}));
   sub->add_option("--case", options->only, "generate only this case (repeatable)");
   sub->add_option("-j,--jobs", options->jobs, "simulations at a time")->capture_default_str()->check(
       CLI::PositiveNumber);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -71,6 +72,14 @@ TEST(RecordingGenerator, BadCasesAreReportedByField) {
   json typo = base;
   typo["sensors"] = {{"angel", 1e-3}};
   EXPECT_THROW(parse_case(typo, dir.path().string(), "cases.json: cases[0]"), InputError);
+  json rule = base;
+  rule["effect"] = {{"name", "none"}, {"concealment", "invisible"}};
+  try {
+    parse_case(rule, dir.path().string(), "cases.json: cases[0]");
+    FAIL() << "an unknown concealment rule was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cases[0].effect.concealment: 'invisible'"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(check_folders_apart(dir / "recordings", dir / "recordings/keys"), InputError);
   EXPECT_THROW(check_folders_apart(dir / "recordings/keys/..", dir / "recordings"), InputError);
   EXPECT_THROW(check_folders_apart(dir / "recordings", dir.path().string()), InputError);
@@ -82,9 +91,10 @@ json read_json(const std::string& path) {
   return json::parse(in);
 }
 
-// Three short cases on the single block (2.5 s of the Duzce record's strong
-// motion at 0.6 scale): none, a hidden centre-of-mass offset and a sensor
-// delay, with the magnitudes searched. About 30 s with 2 jobs.
+// Four short cases on the single block (2.5 s of the Duzce record's strong
+// motion at 0.6 scale): none, a hidden centre-of-mass offset (by either
+// concealment rule) and a sensor delay, with the magnitudes searched. About
+// 30 s with 2 jobs (the two offsets share their runs).
 TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
   const test::TempDir dir;
   const std::string source = FREESTAND_SOURCE_DIR;
@@ -99,6 +109,7 @@ TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
       {"cases",
        {{{"name", "block_none"}, {"effect", {{"name", "none"}}}},
         {{"name", "block_com"}, {"effect", {{"name", "com_eccentricity"}}}},
+        {{"name", "block_com_within"}, {"effect", {{"name", "com_eccentricity"}, {"concealment", "within_scatter"}}}},
         {{"name", "block_delay"}, {"effect", {{"name", "sensor_delay_gain"}}}}}}};
   const std::string case_file = dir.write("cases.json", cases.dump());
   const std::string command = std::string(FREESTAND_TOOL) + " generate " + case_file + " -o " + (dir / "recordings") +
@@ -117,7 +128,7 @@ TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
   for (const EffectInfo& e : effect_catalogue()) EXPECT_EQ(manifest.find(e.name), std::string::npos) << e.name;
 
   const Recording none = read_recording(dir / "recordings/block_none");
-  for (const std::string name : {"block_none", "block_com", "block_delay"}) {
+  for (const std::string name : {"block_none", "block_com", "block_com_within", "block_delay"}) {
     SCOPED_TRACE(name);
     const Recording r = read_recording(dir / ("recordings/" + name));
     EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
@@ -132,8 +143,23 @@ TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
     const json key = read_json(dir / ("answers/" + name + ".answer.json"));
     const json& c = key["concealment"];
     EXPECT_TRUE(c["concealed"].get<bool>());
-    EXPECT_LE(std::abs(c["change"].get<double>()), c["scatter"].get<double>());
     EXPECT_GT(c["scatter"].get<double>(), 0.0);
+    if (name == "block_com_within") {
+      // No further from the model than some recording without the effect.
+      EXPECT_EQ(c["rule"], "within_scatter");
+      std::vector<double> without = c["perturbed_errors"].get<std::vector<double>>();
+      without.push_back(c["error_without_effect"].get<double>());
+      EXPECT_LE(c["error_with_effect"].get<double>(), *std::max_element(without.begin(), without.end()));
+    } else {
+      EXPECT_EQ(c["rule"], "paired_change");
+      EXPECT_LE(std::abs(c["change"].get<double>()), c["scatter"].get<double>());
+    }
+    // The largest concealed magnitude: the next larger one tried was not.
+    const double chosen = key["effect"]["magnitude"].get<double>();
+    const json* next = nullptr;
+    for (const json& t : c["tried"])
+      if (t["magnitude"].get<double>() > chosen && (!next || t["magnitude"] < (*next)["magnitude"])) next = &t;
+    if (next) EXPECT_FALSE((*next)["concealed"].get<bool>()) << (*next)["magnitude"];
     // The key's error is the recording's, measured again from the files
     // (written with 17 digits).
     const Recording model = read_recording(dir / ("answers/" + name + ".model"));
