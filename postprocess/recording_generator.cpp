@@ -689,9 +689,11 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
   json gains = json::object();
   const Recording without = recorded(base[1], 0, {}, &gains);
   const double error_without = global_rms_error(without, out.model);
-  // The case's own draw without the effect is one more of the no-effect distribution.
-  const double largest_error =
-      std::max(error_without, *std::max_element(scatter_errors.begin(), scatter_errors.end()));
+  // within_scatter: the case's own draw without the effect is one more of the
+  // no-effect draws, and the bound lies one sd above the largest of them, so
+  // that every effect concealed by paired_change is concealed by it too.
+  const double within_bound =
+      std::max(error_without, *std::max_element(scatter_errors.begin(), scatter_errors.end())) + scatter;
   const bool paired = spec.effect.rule == Concealment::kPairedChange;
 
   // Verdicts on magnitudes, simulated `jobs` at a time.
@@ -714,7 +716,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
       clean.noise = clean_without.noise = false;
       v.effect_rms =
           global_rms_error(recorded(truths[j], 0, clean, nullptr), recorded(base[1], 0, clean_without, nullptr));
-      v.concealed = paired ? std::abs(v.change) <= scatter : v.error_with <= largest_error;
+      v.concealed = paired ? std::abs(v.change) <= scatter : v.error_with <= within_bound;
       verdicts.push_back(std::move(v));
     }
     return verdicts;
@@ -751,9 +753,9 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
   if (info && !chosen)
     throw InputError(fmt::format(
         "case '{}': effect {} is not concealed at magnitude {} {} (RMS error {:.3g} m, change {:.3g} m; perturbed "
-        "errors' sd {:.3g} m, largest {:.3g} m){}",
+        "errors' sd {:.3g} m{}){}",
         spec.name, effect, tried.back().magnitude, info->info.unit, tried.back().error_with, tried.back().change,
-        scatter, largest_error,
+        scatter, paired ? "" : fmt::format(", within_scatter bound {:.3g} m", within_bound),
         spec.effect.magnitude > 0 ? ": give a smaller magnitude, or none to search" : ""));
   if (chosen && chosen->effect_rms == 0)
     throw InputError(fmt::format(
@@ -784,7 +786,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
          std::string(paired ? "|RMS error of the recording with the effect - RMS error of the same recording without "
                               "it| <= sd of the RMS errors of perturbed recordings without it"
                             : "RMS error of the recording with the effect <= the largest RMS error of the recordings "
-                              "without it (the same draw and the perturbed ones)") +
+                              "without it (the same draw and the perturbed ones) + sd of the perturbed ones") +
              "; errors against the nominal model's prediction, all body channels, angles times the body's bounding "
              "radius (m)"},
         {"error_with_effect", final_verdict.error_with},

@@ -57,7 +57,7 @@ struct Perturbation {
 // nominal model's prediction (docs/diagnose-cases.md, "The concealment criterion").
 enum class Concealment {
   kPairedChange,   // |E(with) - E(same draw without)| <= sd of E over the perturbed draws
-  kWithinScatter,  // E(with) <= the largest E of the draws without it (same and perturbed)
+  kWithinScatter,  // E(with) <= largest E of the draws without it (same, perturbed) + that sd
 };
 // "paired_change" or "within_scatter"; InputError naming `where` otherwise.
 Concealment concealment_rule(const std::string& name, const std::string& where);

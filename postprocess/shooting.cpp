@@ -15,14 +15,18 @@ namespace {
 using nlohmann::json;
 
 // The cut times: `margin` before each motion episode that follows a rest of at least
-// `min_rest` on the base, keeping every piece at least `min_segment` long.
+// `min_rest` on the base, keeping every piece at least `min_segment` long and with a
+// motion episode of its own (a piece of rest alone has no events to compare: a cut before
+// the first episode would leave the fit set empty and hold out the whole motion).
 std::vector<double> cut_times(const AnalysedBody& body, const analysis::AnalysisParameters& p,
                               const ShootingOptions& o, double start, double end) {
   std::vector<double> cuts;
   const auto& modes = body.summary.modes;
+  bool moved = false;  // the piece that the next cut would end holds a motion episode
   for (std::size_t i = 0; i + 1 < modes.size(); ++i) {
     const analysis::ModeSegment& rest = modes[i];
-    if (rest.mode != analysis::Mode::rest || modes[i + 1].mode == analysis::Mode::lost) continue;
+    if (rest.mode != analysis::Mode::rest && rest.mode != analysis::Mode::lost) moved = true;
+    if (!moved || rest.mode != analysis::Mode::rest || modes[i + 1].mode == analysis::Mode::lost) continue;
     const double cut = modes[i + 1].start - o.margin;
     if (modes[i + 1].start - rest.start < o.min_rest || cut < rest.start) continue;
     if (cut - (cuts.empty() ? start : cuts.back()) < o.min_segment || end - cut < o.min_segment) continue;
@@ -31,6 +35,7 @@ std::vector<double> cut_times(const AnalysedBody& body, const analysis::Analysis
                                    signal::finite_mean(body.motion.channels[analysis::kRockY], r));
     if (!(tilt <= o.max_tilt_sds * p.angle_noise)) continue;  // not resting on its base
     cuts.push_back(cut);
+    moved = false;
   }
   return cuts;
 }

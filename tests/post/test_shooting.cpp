@@ -21,14 +21,14 @@ namespace {
 
 using nlohmann::json;
 
-// Two one-sine pulses of 3.8 m/s^2 at 3 Hz (uplift of b/h = 1/3 at g/3 = 3.3 m/s^2; sliding
-// at mu g = 5.9 m/s^2 does not start), at 0.2 s and 3.2 s.
-std::string two_pulses(const test::TempDir& dir) {
+// One-sine pulses of 3.8 m/s^2 at 3 Hz (uplift of b/h = 1/3 at g/3 = 3.3 m/s^2; sliding
+// at mu g = 5.9 m/s^2 does not start), starting at `starts` (s), over 5 s.
+std::string pulses(const test::TempDir& dir, const std::vector<double>& starts) {
   std::string csv = "t,ax\n";
   for (int k = 0; k <= 5000; ++k) {
     const double t = k * 1e-3;
     double a = 0;
-    for (double start : {0.2, 3.2})
+    for (double start : starts)
       if (t >= start && t < start + 1.0 / 3) a = 3.8 * std::sin(2 * M_PI * 3 * (t - start));
     csv += fmt::format("{:.3f},{:.10g}\n", t, a);
   }
@@ -52,7 +52,7 @@ double peak(const std::vector<double>& y) {
 
 TEST(Shooting, CutsAtTheRestAndTheRestartReproducesTheSecondEpisode) {
   test::TempDir dir;
-  const json scenario = truth(two_pulses(dir));
+  const json scenario = truth(pulses(dir, {0.2, 3.2}));
   Recording recording = synthetic_recording(scenario, dir / "truth", {1e-3, 5e-4, 3});
   recording.path = "two_pulses";
   const std::vector<Recording> pieces = shooting_segments(recording);
@@ -78,6 +78,15 @@ TEST(Shooting, CutsAtTheRestAndTheRestartReproducesTheSecondEpisode) {
   const double ratio = peak(simulated.body_channel("block", "rock_x")) / recorded_peak;
   RecordProperty("peak_ratio", std::to_string(ratio));
   EXPECT_NEAR(ratio, 1.0, 0.02);
+}
+
+// A record that starts at rest is not cut before its first episode: that piece would hold
+// no events. One pulse after 1.5 s of rest: one piece.
+TEST(Shooting, TheRestBeforeTheFirstEpisodeIsNotAPiece) {
+  test::TempDir dir;
+  Recording recording = synthetic_recording(truth(pulses(dir, {1.5})), dir / "truth", {1e-3, 5e-4, 3});
+  ASSERT_GT(peak(recording.body_channel("block", "rock_x")), 0.02) << "the pulse rocks the block";
+  EXPECT_EQ(shooting_segments(recording).size(), 1u);
 }
 
 TEST(Shooting, AStackIsNotCut) {
