@@ -329,8 +329,9 @@ std::vector<Candidate> candidates_for(const json& document, const Recording& rec
   body_candidates(scene, document, recording, out, skipped);
   // Table motion the model was not given, in step with the recorded x acceleration: vertical
   // (up to as large: a vertical component the model was not given, V/H of 2/3 in design codes
-  // and 1 or more near a fault; it was half until study 12 concealed 0.8) and tilts (0.1 rad/s^2 per m/s^2: 0.1 m of
-  // travel tilts the table by 10 mrad, far beyond a servo-controlled table's few mrad).
+  // and 1 or more near a fault; it was half until study 12 concealed 0.8) and tilts
+  // (0.1 rad/s^2 per m/s^2: 0.1 m of travel tilts the table by 10 mrad, far beyond a
+  // servo-controlled table's few mrad).
   if (!recording.table_channel('a', 'x')) {
     if (skipped) skipped->push_back("table motion candidates: need a recorded table_ax to drive them");
     return out;

@@ -94,7 +94,7 @@ json read_json(const std::string& path) {
 // Four short cases on the single block (2.5 s of the Duzce record's strong
 // motion at 0.6 scale): none, a hidden centre-of-mass offset (by either
 // concealment rule) and a sensor delay, with the magnitudes searched. About
-// 30 s with 2 jobs (the two offsets share their runs).
+// 5 s with 2 jobs (the two offsets share their runs).
 TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
   const test::TempDir dir;
   const std::string source = FREESTAND_SOURCE_DIR;
