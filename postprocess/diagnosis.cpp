@@ -469,7 +469,7 @@ class Search {
     return prefixed(event_features(sim, recorded.nominal), job.recording);
   }
 
-  // Simulates one model (all recordings) per point as the ensemble's members numbered `members`:
+  // Simulates one model (all recordings) per point as the ensemble's first `members` members:
   // their perturbed initial states, table gains and noise seeds (common random numbers: the
   // same for every candidate value, so the objective changes only with the physics). Not the
   // unperturbed nominal: a state without any perturbation is special (a block shaken along x
@@ -479,22 +479,18 @@ class Search {
   // stiffness out of the three tested), and its scatter is in the ensembles' variance anyway.
   // Per point, each member's features.
   std::vector<std::vector<Features>> evaluate(const std::vector<Model>& points, const std::string& stage,
-                                              const std::vector<int>& members = {0}) {
-    const std::size_t n = recordings_.size();
-    const int count = *std::max_element(members.begin(), members.end()) + 1;
+                                              int members = 1) {
     std::vector<Job> jobs;
     for (const Model& m : points) {
-      const std::vector<Job> all = ensemble_jobs(m, recordings_, count, options_.table_gain_sd);
-      for (int e : members)  // after the n nominal runs, member e's n runs
-        jobs.insert(jobs.end(), all.begin() + static_cast<std::ptrdiff_t>(n * (1 + e)),
-                    all.begin() + static_cast<std::ptrdiff_t>(n * (2 + e)));
+      const std::vector<Job> first = ensemble_jobs(m, recordings_, members, options_.table_gain_sd);
+      jobs.insert(jobs.end(), first.begin() + static_cast<std::ptrdiff_t>(m.size()), first.end());
     }
     for (Job& job : jobs) job.gains = false;
     const std::vector<Features> per_job = run(jobs, stage);
-    std::vector<std::vector<Features>> out(points.size(), std::vector<Features>(members.size()));
+    std::vector<std::vector<Features>> out(points.size(), std::vector<Features>(static_cast<std::size_t>(members)));
     for (std::size_t i = 0, j = 0; i < points.size(); ++i)
       for (Features& member : out[i])
-        for (std::size_t r = 0; r < n; ++r, ++j) member.insert(per_job[j].begin(), per_job[j].end());
+        for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) member.insert(per_job[j].begin(), per_job[j].end());
     return out;
   }
 
@@ -965,7 +961,7 @@ class WorkDirectory {
 // the ensemble.
 struct Round {
   int number = 0;                        // 1 = the first
-  double chi2_base = 0, held_base = 0;   // the profiles' baseline: the current model's typical members
+  double chi2_base = 0, held_base = 0;   // the profiles' baseline: the current model's first member
   std::vector<Profile> profiles;         // of the physics candidates (Diagnoser::candidates_ order)
   std::vector<FittedCandidate> fits;     // physics candidates, then sensor candidates
   std::vector<double> profile_delta;     // chi2 drops of the profiles (the same scatter for all)
@@ -1000,13 +996,10 @@ class Diagnoser {
     for (const Recording& r : recordings) base.push_back(recording_scenario(scenario, r, "table_motion.csv"));
     return base;
   }
-  // The current model run as the members a profile point runs as (the profile_members typical
-  // of its ensemble against target_, unit gains): what each point's drop is measured from.
+  // The current model run as the members a profile point runs as (the ensemble's first
+  // profile_members, unit gains): what each point's drop is measured from.
   std::vector<Features> profile_baseline(const std::string& stage) {
-    std::vector<double> chi2;
-    for (const Features& m : members_of(ensemble_runs_, recordings_.size())) chi2.push_back(target_.chi2(m, false));
-    profile_members_ = typical_members(chi2, options_.profile_members);
-    return search_.evaluate({base_}, stage, profile_members_).front();
+    return search_.evaluate({base_}, stage, options_.profile_members).front();
   }
   void run_ensemble(const std::string& stage);
   void check_grid();
@@ -1056,8 +1049,7 @@ class Diagnoser {
   Target target_;                          // the recording against the current model's ensemble
   bool held_available_ = false;            // some features are held out
   std::vector<Features> nominal_members_;  // the ensemble of the model as given
-  std::vector<Features> current_;          // the profiles' baseline: the current model run as profile_members_
-  std::vector<int> profile_members_;       // the ensemble members profiles run as (typical_members of the current model's)
+  std::vector<Features> current_;          // the profiles' baseline: the current model's first profile_members
   std::vector<std::vector<Features>> hypothesis_runs_;  // the ensemble at each hypothesis (Options order)
   int tried_ = 0;                          // candidates counted in the Holm correction so far
 };
@@ -1247,7 +1239,7 @@ Round Diagnoser::profiled(int number) {
     }
   }
   const std::vector<std::vector<Features>> evaluated =
-      search_.evaluate(points, fmt::format("round {}: profiles", number), profile_members_);
+      search_.evaluate(points, fmt::format("round {}: profiles", number), options_.profile_members);
   for (std::size_t i = 0, j = 0; i < candidates_.size(); ++i)
     for (std::size_t k = 1; k < r.profiles[i].u.size(); ++k) r.profiles[i].members.push_back(evaluated[j++]);
   tried_ += static_cast<int>(candidates_.size() + sensor_candidates_.size());
@@ -1378,7 +1370,7 @@ void Diagnoser::refine(Round& r, std::size_t i) {
       points.push_back(applied(base_, c, to_value(c, u)));
     }
     const std::vector<std::vector<Features>> more =
-        search_.evaluate(points, fmt::format("round {}: refining", r.number), profile_members_);
+        search_.evaluate(points, fmt::format("round {}: refining", r.number), options_.profile_members);
     p.members.insert(p.members.end(), more.begin(), more.end());
     r.fits[i] = summarise(c, p, target_, r.chi2_base, r.held_base, held_available_, true);
   }

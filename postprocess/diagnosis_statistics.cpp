@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 
 #include "signal_tools.h"
 
@@ -278,14 +277,6 @@ double secant_sd(double u0, double u, double drop) { return drop > 0 ? std::abs(
 // degree of freedom above 1) means the data say less: the Birge ratio.
 double birge_ratio(double chi2, int features) {
   return features > 1 ? std::max(1.0, std::sqrt(chi2 / (features - 1))) : 1.0;
-}
-
-std::vector<int> typical_members(const std::vector<double>& chi2, int count) {
-  std::vector<int> order(chi2.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return chi2[a] < chi2[b]; });
-  const int n = static_cast<int>(order.size()), k = std::clamp(count, 0, n);
-  return {order.begin() + (n - k) / 2, order.begin() + (n - k) / 2 + k};
 }
 
 }  // namespace freestand::diagnosis

@@ -136,13 +136,6 @@ double secant_sd(double u0, double u, double drop);
 // max(1, sqrt(chi2 / (n - 1))): a misfit beyond the noise widens a profile's s.d. by it.
 double birge_ratio(double chi2, int features);
 
-// The `count` members (indices) whose chi2 lie in the middle of the members' chi2s (the lower
-// middle when they cannot be centred), in order of chi2: the realisations a profile runs along.
-// A profile's drop is measured from its baseline, one realisation of a chaotic model: the best
-// of the ensemble raises every candidate's points against it and the worst lowers them, and a
-// realisation at rest where the others rock shows no impact or friction parameter at all.
-std::vector<int> typical_members(const std::vector<double>& chi2, int count);
-
 }  // namespace freestand::diagnosis
 
 #endif

@@ -170,8 +170,8 @@ void add_diagnose_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(2, 16));
   sub->add_option("--profile-members", o->options.profile_members,
-                  "ensemble members each profile point runs as (those of the middle chi2), their chi2 averaged: a "
-                  "steadier profile of a chaotic model at that many times the profiles' cost")
+                  "ensemble members each profile point runs as, their chi2 averaged: a steadier profile of a chaotic "
+                  "model at that many times the profiles' cost")
       ->capture_default_str()
       ->check(CLI::Range(1, 50));
   sub->add_option("--z-threshold", o->options.z_threshold, "|z| that flags a feature as mismatched")
