@@ -1281,7 +1281,8 @@ void Diagnoser::screen(Round& r) {
   const auto per = static_cast<std::ptrdiff_t>(kScreenMembers * recordings_.size());
   std::vector<std::string> words;
   for (std::size_t n = 0; n < screened.size(); ++n) {
-    const std::vector<Features> at = merged({runs.begin() + n * per, runs.begin() + (n + 1) * per}, 0, recordings_.size());
+    const std::vector<Features> at =
+        merged({runs.begin() + n * per, runs.begin() + (n + 1) * per}, 0, recordings_.size());
     const Target pooled = target_of_members(measured_, {members, at}, search_, held_);
     const double fit = ensemble_drop(pooled, before, pooled, at, false).value,
                  held = held_available_ ? ensemble_drop(pooled, before, pooled, at, true).value : 0.0;
@@ -1296,10 +1297,10 @@ void Diagnoser::screen(Round& r) {
 // In order of the chi2 drop (a physics candidate's screen's; one not screened is not tested),
 // candidates are refined and tested until kAttempts physics ones have been (sensor candidates
 // run nothing and do not count); the first that passes is returned, else fits.size(). A
-// candidate whose held-out features got worse (on the screen) comes after the others: the test asks
-// them to improve on all the members, the screen's among them
-// (Diagnosis.NamesASofterContactNotANarrowerBase: both short corners screened best, at
-// held-out -55 and -64 on the ensemble, and took two of the three tests).
+// candidate whose held-out features got worse on the screen comes after the others: the test
+// asks them to improve on all the members, the screen's among them (in a build that profiled
+// along another member, Diagnosis.NamesASofterContactNotANarrowerBase's two short corners
+// screened best, held-out -58 and -51, and took two of the three tests from the stiffness).
 std::size_t Diagnoser::first_passing(Round& r) {
   const auto rank = [&](std::size_t i) {
     if (i >= candidates_.size()) return std::pair{!held_available_ || r.fits[i].held_out_delta > 0, r.fits[i].delta};
@@ -1557,8 +1558,8 @@ void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alik
   // improved one.
   ensemble_runs_ = r.tested[best];
   ensemble_more_ = r.extended.count(best) ? r.extended[best] : std::vector<Features>{};
-  target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
   current_ = profile_baseline(fmt::format("round {}: the improved model's profile baseline", r.number + 1));
+  target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
 }
 
 // The improved model against the recording: features, drifts, what is left unexplained, and
