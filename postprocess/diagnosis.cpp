@@ -965,7 +965,7 @@ struct Round {
   std::vector<Profile> profiles;         // of the physics candidates (Diagnoser::candidates_ order)
   std::vector<FittedCandidate> fits;     // physics candidates, then sensor candidates
   std::vector<double> profile_delta;     // chi2 drops of the profiles (the same scatter for all)
-  std::map<std::size_t, std::pair<double, double>> screened;  // physics candidate -> its screen's chi2 drops (fit set, held out)
+  std::map<std::size_t, std::pair<double, double>> screened;  // physics candidate -> its screen's drops (fit, held out)
   std::map<std::size_t, std::vector<Features>> tested;    // the ensemble at each physics candidate tested
   std::map<std::size_t, std::vector<Features>> extended;  // its members M + 1 to 2M, where a second look ran them
 };
