@@ -53,9 +53,9 @@ struct Candidate {
   std::function<void(Recording&, double)> correct;  // undoes the issue in recording number `recording`
   std::size_t recording = 0;
   // An accepted effect stays a candidate, re-fitted around its value with profile steps
-  // scaled by `profile_scale`: a new candidate must beat a better value of the old one.
+  // scaled by 0.1: a new candidate must beat a better value of the old one.
   int effect = -1;           // index in Diagnosis::effects, or -1
-  double profile_scale = 1;
+  double profile_scale = 1;  // the quick profile's steps (0.01 x 4^k of the range) times this
 };
 
 // Candidates of every available catalogue entry for a run document (bodies,

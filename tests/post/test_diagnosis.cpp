@@ -247,16 +247,17 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   EXPECT_EQ(d.hypothesis_pairs[0].second_fits, "worse");
 }
 
-// A contact ten times softer than stated also moves the pivot inward (the block sinks into its
-// edge) and so lowers the rocking threshold, as an inset edge does: the two entries are of
-// similar signature (catalogue), and the softer contact must be named, or the two said alike,
-// not the inset alone. Tolerance: a factor 2 on k: rocking feels k only through how far the
-// pivot edge sinks and how long an impact lasts, so the event features pin k loosely (the
-// s.e. check states how loosely: x/ 1.24, measured).
+// A contact seven times softer than stated (off the quick profile's 1.15, 1.8, 10 ladder, so
+// the refinement must find it) also moves the pivot inward (the block sinks into its edge) and
+// so lowers the rocking threshold, as an inset edge does: the two entries are of similar
+// signature (catalogue), and the softer contact must be named, or the two said alike, not the
+// inset alone. Tolerance: a factor 2 on k: rocking feels k only through how far the pivot edge
+// sinks and how long an impact lasts, so the event features pin k loosely (the s.e. check
+// states how loosely: x/ 1.20, measured).
 TEST(Diagnosis, NamesASofterContactNotANarrowerBase) {
   test::TempDir dir;
   json truth = rocking_scenario(0.3);
-  truth["contact"]["stiffness"] = kStiffness / 10;
+  truth["contact"]["stiffness"] = kStiffness / 7;
   Recording recording = rocking_recording(truth, dir, 16);
   recording.nominal["contact"] = {{"stiffness", kStiffness}};  // what the experimenter believes
   const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, fast_options(dir));
@@ -266,9 +267,9 @@ TEST(Diagnosis, NamesASofterContactNotANarrowerBase) {
   const bool alike = std::count(e.indistinguishable.begin(), e.indistinguishable.end(), "contact_stiffness[table/block]");
   EXPECT_TRUE(e.fit.candidate.entry == "contact_stiffness" || alike) << e.fit.candidate.name;
   if (e.fit.candidate.entry == "contact_stiffness") {
-    EXPECT_GT(e.fit.value, kStiffness / 20);
-    EXPECT_LT(e.fit.value, kStiffness / 5);
-    expect_standard_error_covers(e.fit, kStiffness / 10);
+    EXPECT_GT(e.fit.value, kStiffness / 14);
+    EXPECT_LT(e.fit.value, kStiffness / 3.5);
+    expect_standard_error_covers(e.fit, kStiffness / 7);
   }
 }
 
