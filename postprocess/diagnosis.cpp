@@ -45,6 +45,7 @@ const int kScreened = 2 * kAttempts;  // physics candidates screened per round (
 const int kScreenMembers = 3;      // members a screened candidate runs as (a drop's jackknife needs 3 pairs)
 const double kInfinity = std::numeric_limits<double>::infinity();
 const int kRefinedSpan = 5;        // points of a refined profile a parabola is fitted through (its lowest and 2 each side)
+const double kWindowMargin = 0.05;  // s a window-only run goes on past the window's end (its samples there are cut)
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
 // ------------------------------------------------------------------ features
@@ -406,7 +407,28 @@ struct Job {
   std::size_t recording = 0;
   unsigned seed = 1;
   bool gains = true;  // read through gains drawn per channel (ensembles); false: unit gains (profiles)
+  bool window_only = false;  // runs to the profiles' window only and gives its features there (Search::set_window)
 };
+
+// Features on the profiles' window are named kWindow + the name; the rest are the whole record's.
+const std::string kWindow = "window:";
+
+// Those of f on the window, named as the whole record's are (a failed run's failure kept).
+Features window_part(const Features& f) {
+  Features out;
+  for (const auto& [name, v] : f)
+    if (name.rfind(kWindow, 0) == 0) out[name.substr(kWindow.size())] = v;
+  if (Target::failed(f)) out[kFailedSimulation] = {};
+  return out;
+}
+
+// Those of f on the whole record.
+Features whole_part(const Features& f) {
+  Features out;
+  for (const auto& [name, v] : f)
+    if (name.rfind(kWindow, 0) != 0) out.insert({name, v});
+  return out;
+}
 
 // A parameter point of the model: documents for every recording.
 using Model = std::vector<json>;
@@ -433,7 +455,12 @@ class Search {
   std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {
     std::vector<json> models;
     std::vector<const Recording*> recs;
-    for (const Job& job : jobs) models.push_back(job.document), recs.push_back(&recordings_[job.recording]);
+    for (const Job& job : jobs) {
+      models.push_back(job.document), recs.push_back(&recordings_[job.recording]);
+      // A few samples past the window's end: the run's last one may fall short of it.
+      if (job.window_only)
+        models.back()["simulation"]["duration"] = window_end_ - recordings_[job.recording].time.front() + kWindowMargin;
+    }
     std::vector<Features> out(jobs.size());
     std::vector<std::exception_ptr> failures(jobs.size());
     std::mutex progress_lock;
@@ -461,13 +488,35 @@ class Search {
   // with the run's own drifts at rest added (a sensor gain accepted later scales its drift too:
   // a second-order error, not corrected) and the recording's measurement chain (channel gains
   // and noise).
+  // A whole run also gives its features on the window (cut before the noise is drawn, whose
+  // draws run channel by channel: so they are a window-only run's).
   Features features_of(Recording sim, const Job& job) const {
-    const Recording& recorded = recordings_[job.recording];
+    Features out;
+    if (windowed())
+      for (const auto& [name, v] : against(up_to(sim, window_end_), windows_[job.recording], job))
+        out[kWindow + name] = v;
+    if (!job.window_only) out.merge(against(std::move(sim), recordings_[job.recording], job));
+    return out;
+  }
+
+  Features against(Recording sim, const Recording& recorded, const Job& job) const {
     for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sim))
       add_drift(sim, m.channel, m.drift, recorded.time.front());
     add_measurement_noise(sim, noise_for(recorded, job.seed, job.gains));
     return prefixed(event_features(sim, recorded.nominal), job.recording);
   }
+
+  // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,
+  // a profile point runs only to `end` and is compared there alone, against the recording and
+  // the ensemble's scatter on the same window.
+  void set_window(double end) {
+    window_end_ = end;
+    for (const Recording& r : recordings_) windows_.push_back(up_to(r, end));
+  }
+  bool windowed() const { return std::isfinite(window_end_); }
+  double window_end() const { return window_end_; }
+  // What a profile compares of a run's features: those on the window, or all without one.
+  Features profile_view(const Features& f) const { return windowed() ? window_part(f) : f; }
 
   // Simulates one model (all recordings) per point as the ensemble's first `members` members:
   // their perturbed initial states, table gains and noise seeds (common random numbers: the
@@ -477,20 +526,23 @@ class Search {
   // seem to help. Read with unit gains: a member's gain error would be one more offset for the
   // candidates to fit along a profile of that one member (it moved the softer-contact test's
   // stiffness out of the three tested), and its scatter is in the ensembles' variance anyway.
-  // Per point, each member's features.
+  // Per point, each member's features; with `profile`, as a profile point (profile_view), run
+  // only to the window when there is one.
   std::vector<std::vector<Features>> evaluate(const std::vector<Model>& points, const std::string& stage,
-                                              int members = 1) {
+                                              int members = 1, bool profile = false) {
     std::vector<Job> jobs;
     for (const Model& m : points) {
       const std::vector<Job> first = ensemble_jobs(m, recordings_, members, options_.table_gain_sd);
       jobs.insert(jobs.end(), first.begin() + static_cast<std::ptrdiff_t>(m.size()), first.end());
     }
-    for (Job& job : jobs) job.gains = false;
+    for (Job& job : jobs) job.gains = false, job.window_only = profile && windowed();
     const std::vector<Features> per_job = run(jobs, stage);
     std::vector<std::vector<Features>> out(points.size(), std::vector<Features>(static_cast<std::size_t>(members)));
     for (std::size_t i = 0, j = 0; i < points.size(); ++i)
-      for (Features& member : out[i])
+      for (Features& member : out[i]) {
         for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) member.insert(per_job[j].begin(), per_job[j].end());
+        if (profile) member = profile_view(member);
+      }
     return out;
   }
 
@@ -515,6 +567,8 @@ class Search {
   const Options& options_;
   std::string directory_;
   int batches_ = 0;
+  double window_end_ = signal::kNaN;  // s, the profiles' window's end (NaN: profiles run whole)
+  std::vector<Recording> windows_;    // the recordings cut there
 };
 
 double to_value(const Candidate& c, double u) {
@@ -602,6 +656,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   const double sd_u = minimum.sd * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * scaled_unit(c);
   f.evaluations = static_cast<int>(p.u.size());
+  f.held_out_delta = signal::kNaN;  // not measured: left so for a candidate the screen and tests do not reach
   if (held_available) {
     for (std::size_t i = 0; i < p.u.size(); ++i)
       if (std::abs(p.u[i] - curve[best].first) < 1e-12) f.held_out_delta = held_base - mean_chi2(target, p.members[i], true);
@@ -675,7 +730,10 @@ Target target_of_members(const std::vector<Recording>& recordings, const std::ve
     const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
     recorded.insert(f.begin(), f.end());
   }
-  Target t = target_of(recorded, members);
+  std::vector<std::vector<Features>> whole(members.size());
+  for (std::size_t e = 0; e < members.size(); ++e)
+    for (const Features& f : members[e]) whole[e].push_back(whole_part(f));
+  Target t = target_of(recorded, whole);
   for (const auto& [name, f] : t.recorded)
     if (held(name, f)) t.held_out.insert(name);
   return t;
@@ -687,6 +745,16 @@ Target make_target(const std::vector<Recording>& recordings, const std::vector<s
   std::vector<std::vector<Features>> members;
   for (const std::vector<Features>& runs : ensembles) members.push_back(members_of(runs, recordings.size()));
   return target_of_members(recordings, members, search, held);
+}
+
+// The profiles' target on the window: the recordings cut at its end against the ensemble's
+// members there, nothing held out (what is held out comes after the window).
+Target window_target(const std::vector<Recording>& recordings, const std::vector<Features>& runs, const Search& search) {
+  std::vector<Recording> cut;
+  for (const Recording& r : recordings) cut.push_back(up_to(r, search.window_end()));
+  std::vector<Features> members;
+  for (const Features& f : members_of(runs, recordings.size())) members.push_back(window_part(f));
+  return target_of_members(cut, {members}, search, {0, kInfinity});
 }
 
 // A sensor candidate's profile: no simulation, the recording corrected on a fine grid (41
@@ -998,10 +1066,14 @@ class Diagnoser {
   }
   // The current model run as the members a profile point runs as (the ensemble's first
   // profile_members, unit gains): what each point's drop is measured from.
+  // Run whole: the sensor candidates' fits compare it on the whole record.
   std::vector<Features> profile_baseline(const std::string& stage) {
     return search_.evaluate({base_}, stage, options_.profile_members).front();
   }
+  // Whether a profile sees held-out features: not on a window, which ends where they begin.
+  bool profile_held() const { return held_available_ && !search_.windowed(); }
   void run_ensemble(const std::string& stage);
+  void retarget();
   void check_grid();
   void measure();
   const Candidate& hypothesis_candidate(const StatedValue& v) const;
@@ -1047,6 +1119,7 @@ class Diagnoser {
   std::vector<MeasurementIssue> given_drifts_;  // drifts at rest against the model as given
   HeldOutRule held_;
   Target target_;                          // the recording against the current model's ensemble
+  Target profile_target_;                  // the same on the profiles' window (Search::set_window)
   bool held_available_ = false;            // some features are held out
   std::vector<Features> nominal_members_;  // the ensemble of the model as given
   std::vector<Features> current_;          // the profiles' baseline: the current model's first profile_members
@@ -1059,6 +1132,11 @@ Diagnosis Diagnoser::run() {
   candidates_ = candidates_for(base_.front(), recordings_.front(), options_.table_gain_sd, &d_.notes);
   for (const Hypothesis& h : options_.hypotheses)
     for (const StatedValue& v : h) hypothesis_candidate(v);
+  held_ = held_out_rule(recordings_, d_.notes);
+  if (held_.first_recording == 0) {
+    search_.set_window(held_.split);
+    d_.notes.push_back(fmt::format("profiles: run to t = {:.2f} s and compared there (the fit window)", held_.split));
+  }
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle
   // noise, each with its own noise realisation.
   run_ensemble("nominal and ensemble");
@@ -1128,8 +1206,7 @@ void Diagnoser::measure() {
     for (Candidate& c : clock_candidates(recordings_[r], r)) sensor_candidates_.push_back(std::move(c));
   }
   given_drifts_ = drifts_against(recordings_, nominal_runs_);
-  held_ = held_out_rule(recordings_, d_.notes);
-  target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
+  retarget();
   held_available_ = target_.count(true) > 0;
   d_.feature_count = static_cast<int>(target_.recorded.size());
   nominal_members_ = members_of(ensemble_runs_, recordings_.size());
@@ -1226,28 +1303,31 @@ bool Diagnoser::search_round(int number) {
 Round Diagnoser::profiled(int number) {
   Round r;
   r.number = number;
-  r.chi2_base = mean_chi2(target_, current_, false), r.held_base = mean_chi2(target_, current_, true);
+  std::vector<Features> baseline;
+  for (const Features& f : current_) baseline.push_back(search_.profile_view(f));
+  r.chi2_base = mean_chi2(profile_target_, baseline, false), r.held_base = mean_chi2(profile_target_, baseline, true);
   std::vector<Model> points;
   r.profiles.resize(candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const Candidate& c = candidates_[i];
     const double u0 = to_scaled(c, c.nominal);
-    r.profiles[i].u.push_back(u0), r.profiles[i].members.push_back(current_);
+    r.profiles[i].u.push_back(u0), r.profiles[i].members.push_back(baseline);
     for (double u : profile_offsets(u0, options_.profile_points, c.profile_scale)) {
       r.profiles[i].u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
   }
   const std::vector<std::vector<Features>> evaluated =
-      search_.evaluate(points, fmt::format("round {}: profiles", number), options_.profile_members);
+      search_.evaluate(points, fmt::format("round {}: profiles", number), options_.profile_members, true);
   for (std::size_t i = 0, j = 0; i < candidates_.size(); ++i)
     for (std::size_t k = 1; k < r.profiles[i].u.size(); ++k) r.profiles[i].members.push_back(evaluated[j++]);
   tried_ += static_cast<int>(candidates_.size() + sensor_candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i)
-    r.fits.push_back(summarise(candidates_[i], r.profiles[i], target_, r.chi2_base, r.held_base, held_available_, false));
+    r.fits.push_back(summarise(candidates_[i], r.profiles[i], profile_target_, r.chi2_base, r.held_base, profile_held(),
+                               false));
   for (const Candidate& c : sensor_candidates_)
-    r.fits.push_back(fit_sensor(c, measured_, ensemble_runs_, search_, held_, current_, r.chi2_base, r.held_base,
-                                held_available_, target_.count(false)));
+    r.fits.push_back(fit_sensor(c, measured_, ensemble_runs_, search_, held_, current_, mean_chi2(target_, current_, false),
+                                mean_chi2(target_, current_, true), held_available_, target_.count(false)));
   for (const FittedCandidate& f : r.fits) r.profile_delta.push_back(f.delta);
   return r;
 }
@@ -1366,14 +1446,14 @@ void Diagnoser::refine(Round& r, std::size_t i) {
   Profile& p = r.profiles[i];
   for (int step = 0; step < 2; ++step) {
     std::vector<Model> points;
-    for (double u : refinement_points(profile_curve(c, p, target_))) {
+    for (double u : refinement_points(profile_curve(c, p, profile_target_))) {
       p.u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
     const std::vector<std::vector<Features>> more =
-        search_.evaluate(points, fmt::format("round {}: refining", r.number), options_.profile_members);
+        search_.evaluate(points, fmt::format("round {}: refining", r.number), options_.profile_members, true);
     p.members.insert(p.members.end(), more.begin(), more.end());
-    r.fits[i] = summarise(c, p, target_, r.chi2_base, r.held_base, held_available_, true);
+    r.fits[i] = summarise(c, p, profile_target_, r.chi2_base, r.held_base, profile_held(), true);
   }
   r.profile_delta[i] = r.fits[i].delta;
 }
@@ -1511,22 +1591,30 @@ void Diagnoser::settle(Round& r, std::size_t i) {
 
 // Candidate `best` of round r passed: a sensor's correction is applied to the recording, a
 // physics candidate's value to the model, whose ensemble becomes the one tested there.
-// Candidates whose profile dropped within kIndistinguishable of the best's are named as
-// fitting alike, those of a similar entry that dropped less as similar.
+// Candidates that dropped within kIndistinguishable of the best's are named as fitting alike,
+// those of a similar entry that dropped less as similar.
 void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alike) {
   const FittedCandidate f = r.fits[best];
   std::vector<std::pair<std::string, double>> similar;
   const CatalogueEntry* entry = catalogue_entry(f.candidate.entry);
+  // A candidate's drop and the accepted one's on the same footing: the screen's where both ran
+  // there (3 members; on the tower benchmark the pedestal's COM profiled 15.2 to the tower's
+  // 11.6, and screened 3.6 to 16.3), else the single-run profiles'.
+  const auto drops = [&](std::size_t i) {
+    if (r.screened.count(i) && r.screened.count(best)) return std::pair{r.screened.at(i).first, r.screened.at(best).first};
+    return std::pair{r.profile_delta[i], r.profile_delta[best]};
+  };
   for (std::size_t i = 0; i < r.fits.size(); ++i) {
     if (i == best || r.profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), r.fits[i].candidate.name))
       continue;
-    if (r.profile_delta[i] > r.profile_delta[best] - kIndistinguishable) alike.push_back(r.fits[i].candidate.name);
+    if (const auto [drop, best_drop] = drops(i); drop > best_drop - kIndistinguishable)
+      alike.push_back(r.fits[i].candidate.name);
     else if (entry && std::count(entry->similar.begin(), entry->similar.end(), r.fits[i].candidate.entry))
       similar.push_back({r.fits[i].candidate.name, r.profile_delta[i]});
   }
   if (best >= candidates_.size()) {
     f.candidate.correct(measured_[f.candidate.recording], f.value);
-    target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
+    retarget();
     d_.measurement.push_back(sensor_issue(f, alike));
     d_.measurement.back().round = r.number;
     sensor_candidates_.erase(sensor_candidates_.begin() + static_cast<std::ptrdiff_t>(best - candidates_.size()));
@@ -1559,7 +1647,14 @@ void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alik
   ensemble_runs_ = r.tested[best];
   ensemble_more_ = r.extended.count(best) ? r.extended[best] : std::vector<Features>{};
   current_ = profile_baseline(fmt::format("round {}: the improved model's profile baseline", r.number + 1));
+  retarget();
+}
+
+// The recording against the current model's ensemble: on the whole record, and on the
+// profiles' window (the same target without one).
+void Diagnoser::retarget() {
   target_ = make_target(measured_, {ensemble_runs_}, search_, held_);
+  profile_target_ = search_.windowed() ? window_target(measured_, ensemble_runs_, search_) : target_;
 }
 
 // The improved model against the recording: features, drifts, what is left unexplained, and

@@ -463,6 +463,14 @@ const std::vector<double>* Recording::table_channel(char kind, char axis) const 
   return c ? &c->values : nullptr;
 }
 
+Recording up_to(const Recording& recording, double end) {
+  Recording out = recording;
+  const auto kept = static_cast<std::size_t>(std::upper_bound(out.time.begin(), out.time.end(), end) - out.time.begin());
+  out.time.resize(kept);
+  for (RecordingChannel& c : out.channels) c.values.resize(std::min(kept, c.values.size()));
+  return out;
+}
+
 Recording read_recording(const std::string& path) {
   const auto stem_of = [&](std::size_t suffix_length) { return path.substr(0, path.size() - suffix_length); };
   if (ends_with(path, ".csv")) return read_csv(path, stem_of(4) + ".nominal.json");

@@ -38,6 +38,9 @@ struct Recording {
   const std::vector<double>* table_channel(char kind, char axis) const;
 };
 
+// Its samples at times up to `end` (all channels cut alike).
+Recording up_to(const Recording& recording, double end);
+
 // Reads NAME.csv (+ NAME.nominal.json next to it), NAME.h5 / NAME.hdf5, or
 // a stem NAME for which one of those exists. Missing table channels of an
 // axis are derived from the present ones. Throws InputError naming file and

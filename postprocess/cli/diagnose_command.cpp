@@ -43,8 +43,9 @@ void print_candidates(const diagnosis::Diagnosis& d) {
     fmt::print("round {}: {:<44} {:>12} {:>10} {:>8} {:>9} {:>9} {:>9}\n", r + 1, "candidate", "value", "delta chi2",
                "MC s.e.", "p", "dBIC", "held-out");
     for (const diagnosis::FittedCandidate& f : d.rounds[r])
-      fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>8.1f} {:>9.2g} {:>9.1f} {:>9.1f}\n", f.candidate.name, f.value,
-                 f.delta, f.delta_se, f.p_value, f.delta_bic, f.held_out_delta);
+      fmt::print("         {:<44} {:>12.4g} {:>10.1f} {:>8.1f} {:>9.2g} {:>9.1f} {:>9}\n", f.candidate.name, f.value,
+                 f.delta, f.delta_se, f.p_value, f.delta_bic,
+                 std::isfinite(f.held_out_delta) ? fmt::format("{:.1f}", f.held_out_delta) : "n/a");
   }
 }
 

@@ -1,7 +1,8 @@
 // Multiple shooting: a block on a table that rocks in two pulses with a rest between is cut
 // at the rest; the second piece, simulated from the measured rest state with the true model,
 // must reproduce the recording's second episode (the restart is exact, not a compounding
-// whole-record comparison).
+// whole-record comparison). A run stopped early is the whole run cut there (diagnose's profiles
+// run only to their fit window).
 
 #include "shooting.h"
 
@@ -96,6 +97,29 @@ TEST(Shooting, AStackIsNotCut) {
   for (int k = 0; k < 400; ++k) r.time.push_back(0.01 * k);
   for (const char* c : {"a.rock_x", "b.rock_x"}) r.channels.push_back({c, std::vector<double>(400, 0.0), false});
   EXPECT_EQ(shooting_segments(r).size(), 1u);
+}
+
+// Diagnose's profile points run only to the fit window and are compared with the ensemble's
+// whole runs cut at the same time (docs/diagnose.md, step 4): a run stopped there must give
+// the samples the whole run gives up to it. Exact (the same steps in the same order): any
+// difference is a run that depends on its own length (an output grid, a table ramp).
+TEST(ProfileWindow, ARunStoppedEarlyIsTheWholeRunCutThere) {
+  test::TempDir dir;
+  const json scenario = truth(pulses(dir, {0.2, 3.2}));
+  const Recording recording = synthetic_recording(scenario, dir / "truth", {1e-3, 5e-4, 3});
+  const json model = {{"contact", {{"stiffness", 2e7}, {"restitution", 0.3}, {"mu", 0.6}}},
+                      {"simulation", scenario["simulation"]}};
+  const json whole_run = recording_scenario(model, recording, "table_motion.csv");
+  json stopped_run = whole_run;
+  const double end = 3.4;  // in the second pulse's rocking
+  stopped_run["simulation"]["duration"] = end + 0.05;
+  const Recording whole = up_to(simulate_recording(whole_run, recording, dir / "whole"), end),
+                  stopped = up_to(simulate_recording(stopped_run, recording, dir / "stopped"), end);
+  ASSERT_GT(peak(whole.body_channel("block", "rock_x")), 0.02) << "the window holds rocking";
+  EXPECT_EQ(stopped.time, whole.time);
+  ASSERT_EQ(stopped.channels.size(), whole.channels.size());
+  for (std::size_t c = 0; c < whole.channels.size(); ++c)
+    EXPECT_EQ(stopped.channels[c].values, whole.channels[c].values) << whole.channels[c].name;
 }
 
 }  // namespace
