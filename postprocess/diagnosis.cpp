@@ -1093,7 +1093,7 @@ class Diagnoser {
   void refine(Round& r, std::size_t i);
   void test_physics(Round& r, std::size_t i);
   void test_sensor(Round& r, std::size_t i);
-  std::size_t against_similar(Round& r, std::size_t best, std::vector<std::string>& alike);
+  std::size_t against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike);
   std::vector<Features> ensemble_at(const Round& r, const Candidate& c, double u);
   void settle(Round& r, std::size_t i);
   void accept(Round& r, std::size_t best, std::vector<std::string> alike);
@@ -1289,7 +1289,7 @@ bool Diagnoser::search_round(int number) {
   std::size_t best = first_passing(r);
   std::vector<std::string> alike;
   if (best < candidates_.size()) {
-    best = against_similar(r, best, alike);
+    best = against_rivals(r, best, alike);
     settle(r, best);
   }
   d_.rounds.push_back(r.fits);
@@ -1505,20 +1505,29 @@ void Diagnoser::test_sensor(Round& r, std::size_t i) {
   f.held_out_delta = held_available_ ? ensemble_drop(target_, members, at, members, true).value : 0.0;
 }
 
-// Similar signatures (catalogue): a passing physics candidate meets each similar one whose
-// profile also dropped and that passes too, the two ensembles compared member by member
-// (shared seeds). The other is named instead (returned) if it fits better beyond the Monte
+// Rivals: a passing physics candidate meets each one of a similar signature (catalogue) whose
+// profile also dropped, and each whose quick drop came within kIndistinguishable of its own,
+// that passes too, the two ensembles compared member by member (shared seeds). A rival is
+// said to fit alike only on that evidence: on the quick drops alone (until 2026-11-28), a
+// restitution that then failed its test and an untested COM offset were named as fitting as
+// well as a true edge inset (Diagnosis.NamesAndRecoversEdgeInset, profiles on the fit window). The other is named instead (returned) if it fits better beyond the Monte
 // Carlo bound and kIndistinguishable; within them the two are said to fit alike, and the one
 // with the lower chi2 on the ensembles is named: which was tested first is the order of one
 // member's profile, no evidence (case25 of the second case set: velocity weakening dropped
 // 27.4 +- 1.7, a recalibrated friction 26.1 +- 2.6; the friction was tested first and named).
-std::size_t Diagnoser::against_similar(Round& r, std::size_t best, std::vector<std::string>& alike) {
+std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike) {
   const CatalogueEntry* entry = catalogue_entry(candidates_[best].entry);
   const std::size_t first = best;
-  for (std::size_t j = 0; entry && j < candidates_.size(); ++j) {
-    if (j == first || r.profile_delta[j] <= 0 ||
-        !std::count(entry->similar.begin(), entry->similar.end(), candidates_[j].entry))
-      continue;
+  // A candidate's quick drop and the first's on the same footing: the screen's where both ran
+  // there (3 members), else the single-run profiles'.
+  const auto close = [&](std::size_t j) {
+    if (r.screened.count(j) && r.screened.count(first))
+      return r.screened.at(j).first > r.screened.at(first).first - kIndistinguishable;
+    return r.profile_delta[j] > r.profile_delta[first] - kIndistinguishable;
+  };
+  for (std::size_t j = 0; j < candidates_.size(); ++j) {
+    const bool similar = entry && std::count(entry->similar.begin(), entry->similar.end(), candidates_[j].entry);
+    if (j == first || r.profile_delta[j] <= 0 || !(similar || close(j))) continue;
     if (!r.tested.count(j)) test(r, j);
     if (!passes(r.fits[j], true)) continue;
     const std::vector<Features> at_best = members_of(r.tested[best], recordings_.size()),
@@ -1591,24 +1600,18 @@ void Diagnoser::settle(Round& r, std::size_t i) {
 
 // Candidate `best` of round r passed: a sensor's correction is applied to the recording, a
 // physics candidate's value to the model, whose ensemble becomes the one tested there.
-// Candidates that dropped within kIndistinguishable of the best's are named as fitting alike,
-// those of a similar entry that dropped less as similar.
+// `alike` are the physics candidate's rivals that fit alike on the ensemble (against_rivals);
+// a sensor's are the candidates whose profile dropped within kIndistinguishable of its own.
+// Those of a similar entry that dropped less are named as similar.
 void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alike) {
   const FittedCandidate f = r.fits[best];
   std::vector<std::pair<std::string, double>> similar;
   const CatalogueEntry* entry = catalogue_entry(f.candidate.entry);
-  // A candidate's drop and the accepted one's on the same footing: the screen's where both ran
-  // there (3 members; on the tower benchmark the pedestal's COM profiled 15.2 to the tower's
-  // 11.6, and screened 3.6 to 16.3), else the single-run profiles'.
-  const auto drops = [&](std::size_t i) {
-    if (r.screened.count(i) && r.screened.count(best)) return std::pair{r.screened.at(i).first, r.screened.at(best).first};
-    return std::pair{r.profile_delta[i], r.profile_delta[best]};
-  };
+  const bool sensor = best >= candidates_.size();
   for (std::size_t i = 0; i < r.fits.size(); ++i) {
     if (i == best || r.profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), r.fits[i].candidate.name))
       continue;
-    if (const auto [drop, best_drop] = drops(i); drop > best_drop - kIndistinguishable)
-      alike.push_back(r.fits[i].candidate.name);
+    if (sensor && r.profile_delta[i] > r.profile_delta[best] - kIndistinguishable) alike.push_back(r.fits[i].candidate.name);
     else if (entry && std::count(entry->similar.begin(), entry->similar.end(), r.fits[i].candidate.entry))
       similar.push_back({r.fits[i].candidate.name, r.profile_delta[i]});
   }

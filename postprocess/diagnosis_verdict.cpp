@@ -20,7 +20,7 @@ std::string similar_words(const Effect& e) {
   if (e.similar.empty()) return "";
   std::vector<std::string> parts;
   for (const auto& [name, drop] : e.similar) parts.push_back(fmt::format("{} (profile chi2 drop {:.1f})", name, drop));
-  return fmt::format(" Of similar signature, also improving the single-run profile but by less: {}.", fmt::join(parts, ", "));
+  return fmt::format(" Of similar signature, also improving the single-run profile, not named: {}.", fmt::join(parts, ", "));
 }
 
 // Where a mismatched feature is: the impact of its axis, else its time and name.
