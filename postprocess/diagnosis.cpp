@@ -1507,14 +1507,15 @@ void Diagnoser::test_sensor(Round& r, std::size_t i) {
 
 // Rivals: a passing physics candidate meets each one of a similar signature (catalogue) whose
 // profile also dropped, and each whose quick drop came within kIndistinguishable of its own,
-// that passes too, the two ensembles compared member by member (shared seeds). A rival is
-// said to fit alike only on that evidence: on the quick drops alone (until 2026-11-28), a
-// restitution that then failed its test and an untested COM offset were named as fitting as
-// well as a true edge inset (Diagnosis.NamesAndRecoversEdgeInset, profiles on the fit window). The other is named instead (returned) if it fits better beyond the Monte
-// Carlo bound and kIndistinguishable; within them the two are said to fit alike, and the one
-// with the lower chi2 on the ensembles is named: which was tested first is the order of one
-// member's profile, no evidence (case25 of the second case set: velocity weakening dropped
-// 27.4 +- 1.7, a recalibrated friction 26.1 +- 2.6; the friction was tested first and named).
+// that passes too, the two ensembles compared member by member (shared seeds). The other is
+// named instead (returned) if it fits better beyond the Monte Carlo bound and
+// kIndistinguishable; within them the two are said to fit alike, and the one with the lower
+// chi2 on the ensembles is named: which was tested first is the order of one member's
+// profile, no evidence (case25 of the second case set: velocity weakening dropped 27.4 +- 1.7,
+// a recalibrated friction 26.1 +- 2.6; the friction was tested first and named). Alike only on
+// that evidence: on the quick drops alone (until 2026-11-28) a restitution that had failed its
+// test and an untested COM offset were named as fitting as well as a true edge inset
+// (Diagnosis.NamesAndRecoversEdgeInset, profiles on the fit window).
 std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike) {
   const CatalogueEntry* entry = catalogue_entry(candidates_[best].entry);
   const std::size_t first = best;
@@ -1602,7 +1603,7 @@ void Diagnoser::settle(Round& r, std::size_t i) {
 // physics candidate's value to the model, whose ensemble becomes the one tested there.
 // `alike` are the physics candidate's rivals that fit alike on the ensemble (against_rivals);
 // a sensor's are the candidates whose profile dropped within kIndistinguishable of its own.
-// Those of a similar entry that dropped less are named as similar.
+// The other candidates of a similar entry whose profile dropped are named as similar.
 void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alike) {
   const FittedCandidate f = r.fits[best];
   std::vector<std::pair<std::string, double>> similar;
