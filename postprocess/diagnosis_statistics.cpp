@@ -144,9 +144,9 @@ Target Target::with_recorded(const Features& sim) const {
   return t;
 }
 
-int Target::count(bool held) const {
+int Target::count(std::optional<bool> held) const {
   int n = 0;
-  for (const auto& [name, f] : recorded) n += held_out.count(name) == static_cast<std::size_t>(held);
+  for (const auto& [name, f] : recorded) n += !held || held_out.count(name) == static_cast<std::size_t>(*held);
   return n;
 }
 

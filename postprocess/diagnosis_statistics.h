@@ -80,7 +80,8 @@ struct Target {
                        int skip = -1) const;
   // The same scatter with a simulation in the recording's place: is it a draw of the ensemble?
   Target with_recorded(const Features& sim) const;
-  int count(bool held) const;
+  // Features in the fit set (held false), the held-out set (true) or all (nullopt).
+  int count(std::optional<bool> held = std::nullopt) const;
   // Features with |ensemble z| beyond `threshold`, in time order.
   std::vector<Mismatch> mismatches(const std::vector<Features>& members, double threshold) const;
 };
