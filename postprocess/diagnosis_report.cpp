@@ -83,8 +83,9 @@ std::string overlay(const Diagnosis& d, const OverlaidChannel& o) {
 
 Table candidate_table(const Diagnosis& d, std::size_t round) {
   Table t;
-  t.caption = fmt::format("Round {}: every candidate's 1-D profile fit (a candidate only profiled: its profile's "
-                          "drop, on the fit window when there is one, and no held-out figure)", round + 1);
+  t.caption = fmt::format("Round {}: every candidate's 1-D profile fit (one tested on its ensemble: the drop over every "
+                          "feature, held-out part apart; one only profiled: its profile's drop, on the fit window when "
+                          "there is one, and no held-out figure)", round + 1);
   t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "p", "delta BIC", "held-out delta chi2"};
   std::set<std::string> accepted;
   for (const Effect& e : d.effects) accepted.insert(e.fit.candidate.name);
