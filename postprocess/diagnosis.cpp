@@ -1526,7 +1526,6 @@ void Diagnoser::test_sensor(Round& r, std::size_t i) {
 // test and an untested COM offset were named as fitting as well as a true edge inset
 // (Diagnosis.NamesAndRecoversEdgeInset, profiles on the fit window).
 std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike) {
-  const CatalogueEntry* entry = catalogue_entry(candidates_[best].entry);
   const std::size_t first = best;
   // A candidate's quick drop and the first's on the same footing: the screen's where both ran
   // there (3 members), else the single-run profiles'.
@@ -1536,7 +1535,7 @@ std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<st
     return r.profile_delta[j] > r.profile_delta[first] - kIndistinguishable;
   };
   for (std::size_t j = 0; j < candidates_.size(); ++j) {
-    const bool similar = entry && std::count(entry->similar.begin(), entry->similar.end(), candidates_[j].entry);
+    const bool similar = of_similar_signature(candidates_[first], candidates_[j]);
     if (j == first || r.profile_delta[j] <= 0 || !(similar || close(j))) continue;
     if (!r.tested.count(j)) test(r, j);
     if (!passes(r.fits[j], true)) continue;
@@ -1616,13 +1615,12 @@ void Diagnoser::settle(Round& r, std::size_t i) {
 void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alike) {
   const FittedCandidate f = r.fits[best];
   std::vector<std::pair<std::string, double>> similar;
-  const CatalogueEntry* entry = catalogue_entry(f.candidate.entry);
   const bool sensor = best >= candidates_.size();
   for (std::size_t i = 0; i < r.fits.size(); ++i) {
     if (i == best || r.profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), r.fits[i].candidate.name))
       continue;
     if (sensor && r.profile_delta[i] > r.profile_delta[best] - kIndistinguishable) alike.push_back(r.fits[i].candidate.name);
-    else if (entry && std::count(entry->similar.begin(), entry->similar.end(), r.fits[i].candidate.entry))
+    else if (of_similar_signature(f.candidate, r.fits[i].candidate))
       similar.push_back({r.fits[i].candidate.name, r.profile_delta[i]});
   }
   if (best >= candidates_.size()) {

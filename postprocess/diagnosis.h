@@ -57,6 +57,9 @@ struct Candidate {
   int effect = -1;           // index in Diagnosis::effects, or -1
   double profile_scale = 1;  // the quick profile's steps (0.01 x 4^k of the range) times this
 };
+// a and b are of similar signature: b's entry is listed as similar to a's, and two body
+// candidates are on the same body.
+bool of_similar_signature(const Candidate& a, const Candidate& b);
 
 // Candidates of every available catalogue entry for a run document (bodies,
 // interfaces, contact, table_motion as recording_scenario() makes it) whose

@@ -20,8 +20,10 @@ namespace {
 
 // `similar`: entries whose effects on the event features are much alike in rocking physics (a
 // softer contact and an inset edge both move the pivot inward; an off-axis centre of mass, a
-// short corner and a pitching table all make the rocking one-sided; the friction laws all
-// change slip). With an accepted effect the verdict names those that also improved the fit.
+// short corner and a pitching table all make the rocking one-sided; an off-axis centre of
+// mass and an inset edge both bring a pivot nearer the centre of mass, so both lower an
+// uplift threshold; the friction laws all change slip). With an accepted effect the verdict
+// names those that also improved the fit.
 const std::vector<CatalogueEntry> kCatalogue = {
     {"restitution", "interface", "interfaces[i].restitution",
      "the {} impacts lose a different share of their energy than assumed (restitution)", {}},
@@ -35,9 +37,9 @@ const std::vector<CatalogueEntry> kCatalogue = {
     {"velocity_weakening", "interface", "interfaces[i].mu_s, mu_k, friction_decay = 5 s/m",
      "friction at {} weakens gradually as the sliding speed grows", {"static_kinetic_friction", "friction"}},
     {"com_offset_x", "body", "bodies[name].com[0]", "the centre of mass of {} is off its axis along x",
-     {"base_not_flat", "table_pitch"}},
+     {"base_not_flat", "table_pitch", "edge_inset"}},
     {"com_offset_y", "body", "bodies[name].com[1]", "the centre of mass of {} is off its axis along y",
-     {"base_not_flat", "table_roll"}},
+     {"base_not_flat", "table_roll", "edge_inset"}},
     {"vertical_table_motion", "table", "table_motion.z = the table's x acceleration times c",
      "the table also moved vertically, in step with its horizontal motion (no table_az was recorded)", {"table_gain"}},
     {"base_not_flat", "body", "bodies[name].base.corner_gaps: one corner short by |g| (g > 0: the corner named, < 0: its opposite)",
@@ -45,7 +47,7 @@ const std::vector<CatalogueEntry> kCatalogue = {
      {"com_offset_x", "com_offset_y"}},
     {"edge_inset", "body", "bodies[name].base.edge_inset",
      "{} rocks on edges inset from its geometric base edges (worn, rounded or crushed edges: a narrower base)",
-     {"contact_stiffness", "interface_compliance"}},
+     {"contact_stiffness", "interface_compliance", "com_offset_x", "com_offset_y"}},
     {"table_pitch", "table", "table_motion.pitch = the table's x acceleration times c (rad/s^2 per m/s^2)",
      "the table pitched (turned about y) in step with its horizontal motion (no table rotation was recorded)",
      {"com_offset_x"}},
@@ -67,6 +69,15 @@ const std::vector<CatalogueEntry>& catalogue() { return kCatalogue; }
 const CatalogueEntry* catalogue_entry(const std::string& name) {
   const auto e = std::find_if(kCatalogue.begin(), kCatalogue.end(), [&](auto& k) { return k.name == name; });
   return e == kCatalogue.end() ? nullptr : &*e;
+}
+
+// Two body candidates are alike only on the same body: a stack's tower and pedestal answer to
+// different features, and each meeting costs a test.
+bool of_similar_signature(const Candidate& a, const Candidate& b) {
+  const CatalogueEntry* entry = catalogue_entry(a.entry);
+  if (!entry || !std::count(entry->similar.begin(), entry->similar.end(), b.entry)) return false;
+  const auto on_body = [](const Candidate& c) { return catalogue_entry(c.entry)->scope == "body"; };
+  return !(on_body(a) && on_body(b)) || a.where == b.where;
 }
 
 namespace {

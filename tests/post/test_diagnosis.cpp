@@ -179,6 +179,31 @@ TEST(Diagnosis, ProfilesOverTwoMembersNameTheSameRestitution) {
   EXPECT_LT(d.chi2_final, d.chi2_noise_limit);
 }
 
+// The catalogue's `similar` lists are symmetric, and body candidates are alike only on one body:
+// a tower's COM offset meets the tower's inset, not the pedestal's, nor the pedestal's COM.
+TEST(DiagnosisCatalogue, SimilarSignaturesAreSymmetricAndBodyCandidatesMeetOnTheirOwnBody) {
+  for (const diagnosis::CatalogueEntry& e : diagnosis::catalogue())
+    for (const std::string& other : e.similar) {
+      const diagnosis::CatalogueEntry* back = diagnosis::catalogue_entry(other);
+      ASSERT_NE(back, nullptr) << e.name << " lists " << other;
+      EXPECT_EQ(std::count(back->similar.begin(), back->similar.end(), e.name), 1) << other << " -> " << e.name;
+    }
+  const auto candidate = [](const std::string& entry, const std::string& where) {
+    diagnosis::Candidate c;
+    c.entry = entry, c.where = where;
+    return c;
+  };
+  const auto com = candidate("com_offset_x", "tower");
+  EXPECT_TRUE(diagnosis::of_similar_signature(com, candidate("edge_inset", "tower")));
+  EXPECT_TRUE(diagnosis::of_similar_signature(candidate("edge_inset", "tower"), com));
+  EXPECT_FALSE(diagnosis::of_similar_signature(com, candidate("edge_inset", "pedestal")));
+  EXPECT_FALSE(diagnosis::of_similar_signature(com, candidate("com_offset_x", "tower")));  // not listed: the same entry
+  EXPECT_TRUE(diagnosis::of_similar_signature(com, candidate("table_pitch", "table")));
+  EXPECT_TRUE(diagnosis::of_similar_signature(candidate("edge_inset", "pedestal"),
+                                              candidate("interface_compliance", "pedestal/tower")));
+  EXPECT_FALSE(diagnosis::of_similar_signature(candidate("sensor_delay", "tower"), com));  // no catalogue entry
+}
+
 // The centre of mass 12 mm off the axis toward the pivot edge (of b = 100 mm):
 // the block rocks on +x edge with a smaller lever arm, on -x with a larger one,
 // so the half-cycles on the two sides differ. Tolerance 3 mm: the last
@@ -197,6 +222,15 @@ TEST(Diagnosis, NamesAndRecoversCentreOfMassOffset) {
   EXPECT_EQ(d.effects.front().verdict, "missing physics");  // the nominal states no com
   EXPECT_NEAR(d.effects.front().fit.value, 0.012, 0.003);
   expect_standard_error_covers(d.effects.front().fit, 0.012);
+  // An inset edge also brings a pivot nearer the centre of mass (similar signature): where its
+  // profile dropped, it met the offset on the ensemble (a Monte Carlo s.e.) and was not named.
+  const auto& round = d.rounds.front();
+  const auto inset = std::find_if(round.begin(), round.end(),
+                                  [](const auto& f) { return f.candidate.name == "edge_inset[block]"; });
+  ASSERT_NE(inset, round.end());
+  const auto& similar = d.effects.front().similar;
+  if (std::any_of(similar.begin(), similar.end(), [](const auto& s) { return s.first == "edge_inset[block]"; }))
+    EXPECT_GT(inset->delta_se, 0);
 }
 
 // Rounded edges: the block rocks on edges 15 mm inside its 100 mm half-width, so it rocks at a
