@@ -410,14 +410,20 @@ std::vector<double> directions(std::mt19937& rng, double fit_weight) {
   return a;
 }
 
+// The trials of fitted_on_fit_set with seed `seed`, printed as `what`.
+FittedAcceptances measured_acceptances(const char* what, unsigned seed, double fit_weight, double truth) {
+  std::mt19937 rng(seed);
+  const FeatureModel model(rng);
+  const FittedAcceptances n = fitted_on_fit_set(model, directions(rng, fit_weight), truth, rng);
+  std::printf("measured: %s, accepted %d (every feature) and %d (fit set) of %d\n", what, n.every_feature,
+              n.fit_set, kTrials);
+  return n;
+}
+
 TEST(DiagnosisStatistics, AValueFittedOnTheFitSetJudgedOnEveryFeatureKeepsAlpha) {
   // Nothing to find: the held-out part of the drop, at a value fitted to the fit set's chance
   // features, has mean <= 0, so counting it keeps the test at its level.
-  std::mt19937 rng(23);
-  const FeatureModel model(rng);
-  const FittedAcceptances n = fitted_on_fit_set(model, directions(rng, 1.0), 0.0, rng);
-  std::printf("measured: nothing to find, accepted %d (every feature) and %d (fit set) of %d\n", n.every_feature,
-              n.fit_set, kTrials);
+  const FittedAcceptances n = measured_acceptances("nothing to find", 23, 1.0, 0.0);
   // At most alpha = 1 % (binomial s.d. 0.16 %), without diagnose's Holm factor. Measured 0.75 %
   // (the fit set alone 0.2 %: counting the held-out features spends more of alpha, not beyond it).
   EXPECT_LE(n.every_feature, 0.01 * kTrials);
@@ -426,11 +432,7 @@ TEST(DiagnosisStatistics, AValueFittedOnTheFitSetJudgedOnEveryFeatureKeepsAlpha)
 TEST(DiagnosisStatistics, AnEffectThatShowsLateIsFoundOnEveryFeature) {
   // An effect that moves the held-out (later) features four times as much as the fit set's,
   // as a table pitch that builds up over the record (case13 of the second case set).
-  std::mt19937 rng(29);
-  const FeatureModel model(rng);
-  const FittedAcceptances n = fitted_on_fit_set(model, directions(rng, 0.25), 2.0, rng);
-  std::printf("measured: a late effect, accepted %d (every feature) and %d (fit set) of %d\n", n.every_feature,
-              n.fit_set, kTrials);
+  const FittedAcceptances n = measured_acceptances("a late effect", 29, 0.25, 2.0);
   // Measured 3806 against 728 of 4000 (binomial s.d. about 25 each): at least twice as often.
   EXPECT_GT(n.every_feature, 2 * n.fit_set);
 }
