@@ -136,11 +136,6 @@ Features event_features(const Recording& recording, const json& analysis_nominal
         add(e + ".ratio", im.ratio, im.time, std::max(std::isfinite(im.ratio_sd) ? im.ratio_sd : 0.0, 0.01), "rock", false);
       }
       add(ch + ".median_ratio", ri.median_ratio, ri.impacts.empty() ? 0 : ri.impacts.front().time, 0.01, "rock", false);
-      // Over every half-cycle, not the first kEventsPerAxis: chaos reorders the cycles, not the pivot.
-      for (int side : {1, -1}) {
-        const analysis::HalfPeriodScale h = analysis::half_period_scale(ri, side, p);
-        add(ch + (side > 0 ? ".half_period_pos" : ".half_period_neg"), h.value, h.first, h.sd, "rock", false);
-      }
       if (!ri.impacts.empty())
         add(ch + ".dominant_frequency", comparison::spectrum(body.motion.time, body.motion.channels[axis]).dominant_frequency,
             0, 1 / (end - r.time.front()), "rock", false);

@@ -463,26 +463,6 @@ RockingImpacts rocking_impacts(const BodyMotion& motion, int axis, const BodyGeo
   return out;
 }
 
-HalfPeriodScale half_period_scale(const RockingImpacts& ri, int side, const AnalysisParameters& p) {
-  std::vector<double> scales;
-  double variance = 0;
-  HalfPeriodScale out;
-  for (std::size_t k = 0; k < ri.half_cycles.size(); ++k) {
-    const HalfCycle& h = ri.half_cycles[k];
-    // half_cycles[k] starts at impacts[k]; the rate after it says which side it rocks on.
-    if (!(ri.impacts[k].omega_after * side > 0) || !(h.amplitude > p.threshold_sigmas * p.angle_noise)) continue;
-    const double scale = (h.end - h.start) / std::sqrt(h.amplitude);
-    scales.push_back(scale);
-    variance += std::pow(0.5 * scale * p.angle_noise / h.amplitude, 2);  // d(T A^-1/2) / dA = -T A^-3/2 / 2
-    if (scales.size() == 1) out.first = h.start;
-  }
-  out.count = static_cast<int>(scales.size());
-  if (out.count < 3) return out;
-  out.value = median(scales);
-  out.sd = 1.2533 * std::sqrt(variance / out.count / out.count);
-  return out;
-}
-
 MotionSummary analyse_motion(const BodyMotion& motion, const BodyGeometry& geometry, const AnalysisParameters& p) {
   check_motion(motion, p);
   MotionSummary summary;

@@ -128,20 +128,6 @@ struct RockingImpacts {
 RockingImpacts rocking_impacts(const BodyMotion& motion, int axis, const BodyGeometry& geometry,
                                const AnalysisParameters& parameters);
 
-// Half-period against amplitude as one number per side. A rigid block's half-cycle of amplitude
-// A lasts (2 / p) acosh(1 / (1 - A / alpha)), about (2 / p) sqrt(2 A / alpha) for A << alpha, so
-// T / sqrt(A) is nearly a constant of the pivot, 2 sqrt(2 / alpha) / p, whatever amplitudes the
-// shaking set: a narrower base raises it on both sides, an off-axis centre of mass on one side
-// and lowers it on the other, a soft contact lengthens the small cycles most.
-struct HalfPeriodScale {
-  double value = kNaN;  // s rad^-1/2: median over the half-cycles counted of (end - start) / sqrt(amplitude)
-  double sd = kNaN;     // its s.d. from the amplitude noise alone (a median's: 1.2533 x rms / sqrt(count))
-  int count = 0;        // half-cycles counted: on the side asked, amplitude beyond threshold_sigmas angle-noise s.d.
-  double first = kNaN;  // s, start of the first counted
-};
-// Over the half-cycles on `side` (+1: theta > 0, -1: theta < 0); value NaN with fewer than 3.
-HalfPeriodScale half_period_scale(const RockingImpacts& impacts, int side, const AnalysisParameters& parameters);
-
 struct SlipEvent {
   double onset = kNaN, stop = kNaN;  // s
   double slip_x = kNaN, slip_y = kNaN;  // m, slide (rocking part removed) at stop minus at onset

@@ -153,49 +153,6 @@ TEST(MotionAnalysis, HousnerFreeRockingWithSensorNoise) {
     if (segment.end < rocking.impact_times[4]) EXPECT_EQ(segment.mode, Mode::rock) << segment.start;
 }
 
-// The half-period scale of each side against Housner: the half-cycle of amplitude A_k lasts
-// 2 quarter_period(A_k), so the scale is the median over the reference's cycles on that side of
-// 2 quarter_period(A_k) / sqrt(A_k). The block is released at theta0 > 0, so half-cycle k (after
-// impact k) rocks on the negative side for even k. Tolerance per cycle: its duration errs by
-// twice the impact-time tolerance of expect_housner and its amplitude by 4 x 0.70 noise s.d.,
-// and a median moves by no more than the largest error of the values it is taken over (the
-// same cycles counted: those that end before the record does, every one far above the threshold).
-TEST(MotionAnalysis, HalfPeriodScaleOfEachSideIsHousners) {
-  const double theta0 = 0.6 * kBlock.alpha(), noise = 5e-4;
-  const double duration = 7.0;  // 20 impacts, the last cycles still 4 times the threshold
-  const auto rocking = test::free_rocking(kBlock.p(), kBlock.alpha(), kBlock.e(), theta0, kSampleStep, duration);
-  AnalysisParameters parameters;
-  parameters.angle_noise = parameters.length_noise = noise;
-  const MotionSummary summary = analyse_motion(rocking_motion(rocking, kBlock, noise, 7), geometry_of(kBlock), parameters);
-  const double threshold = parameters.threshold_sigmas * noise, p = kBlock.p(), window = parameters.impact_window;
-  const std::vector<double> amplitudes = reference::amplitude_map(kBlock, theta0, 40),
-                            times = housner_impact_times(kBlock, theta0, 40);
-  for (int side : {1, -1}) {
-    std::vector<double> scales;
-    double tolerance = 0;
-    for (std::size_t k = 0; k + 1 < times.size(); ++k) {
-      const double a = amplitudes[k];
-      if ((k % 2 == 0 ? -1 : 1) != side || times[k + 1] > duration - parameters.impact_window) continue;
-      ASSERT_GT(std::fabs(a - threshold), 4 * 0.70 * noise) << "cycle " << k << " is too near the threshold";
-      const double half_period = 2 * reference::quarter_period(kBlock, a), scale = half_period / std::sqrt(a);
-      const double omega = p * std::sqrt(2 * (std::cos(kBlock.alpha() - a) - std::cos(kBlock.alpha())));
-      const double time_tolerance = p * p * std::pow(window, 3) / 120 +
-                                    4 * 3 * noise / std::sqrt(2 * window / kSampleStep) / omega;
-      tolerance = std::max(tolerance, scale * (2 * time_tolerance / half_period + 4 * 0.70 * noise / (2 * a)));
-      scales.push_back(scale);
-    }
-    ASSERT_GE(scales.size(), 3u);
-    std::nth_element(scales.begin(), scales.begin() + scales.size() / 2, scales.end());
-    const double upper = scales[scales.size() / 2];
-    const double lower = scales.size() % 2 ? upper : *std::max_element(scales.begin(), scales.begin() + scales.size() / 2);
-    const HalfPeriodScale found = half_period_scale(summary.impacts[0], side, parameters);
-    EXPECT_EQ(found.count, static_cast<int>(scales.size())) << "side " << side;
-    EXPECT_NEAR(found.value, 0.5 * (lower + upper), tolerance) << "side " << side;
-  }
-  // A body that does not rock has no scale.
-  EXPECT_TRUE(std::isnan(half_period_scale(summary.impacts[1], 1, parameters).value));
-}
-
 TEST(MotionAnalysis, LostSamplesAwayFromImpactsChangeNothingBeyondTolerance) {
   const double theta0 = 0.5 * kBlock.alpha();
   const auto rocking = test::free_rocking(kBlock.p(), kBlock.alpha(), kBlock.e(), theta0, kSampleStep, 4.0);
