@@ -140,7 +140,7 @@ TEST(DiagnosisMeasurement, ChannelGainsKeepARightModelWithinItsNoiseLimit) {
                            "without\n", beyond_with, trials, beyond_without);
   // 1 % expected (3 of 300, binomial s.d. 1.7); the predictive z is conservative (step 2): at
   // most 3 %. Without the gains, 5 %: 7 s.d. above the 1 % a right model should show (measured
-  // 26 of 300 with the half-period scale, 28 before: over 2 s.d. of that count above the bound).
+  // 28 of 300, 2.6 s.d. of that count above the bound).
   EXPECT_LE(beyond_with, 0.03 * trials);
   EXPECT_GT(beyond_without, 0.05 * trials);
 }
