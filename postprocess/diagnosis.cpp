@@ -1112,7 +1112,6 @@ class Diagnoser {
   std::vector<Features> ensemble_runs_;    // the current model's nominal runs and ensemble
   std::vector<Features> ensemble_more_;    // its members M + 1 to 2M, run when a second look needs them
   std::set<std::string> stated_grid_;      // bodies whose contact grid the model states: kept
-  json grid_;                              // the grid the numerics check adopted (null: none)
   std::vector<Recording> measured_;        // the recordings corrected for the accepted sensor candidates
   std::vector<Candidate> candidates_;      // physics (and the table's measurement) candidates
   std::vector<Candidate> sensor_candidates_;  // suspected delays and gains: change the recording, not the model
@@ -1185,10 +1184,7 @@ void Diagnoser::check_grid() {
     check.distance = scale.ensemble_chi2(members_of(ensemble_runs_, recordings_.size()));
     check.limit = chi2_quantile_99(static_cast<int>(scale.recorded.size()));
     check.adopted = check.distance > check.limit;
-    if (check.adopted) {
-      grid_ = set_grid(base_, stated_grid_, per_edge);
-      check.grid = grid_.dump();
-    }
+    if (check.adopted) check.grid = set_grid(base_, stated_grid_, per_edge).dump();
     d_.grid_checks.push_back(check);
     if (!check.adopted) break;
     run_ensemble(fmt::format("nominal and ensemble, contact grid {}", check.grid));
@@ -1711,14 +1707,17 @@ void Diagnoser::against_improved(const std::vector<Features>& final_members) {
   }
 }
 
-// 4. The improved scenario: the user's, with the recording's bodies when it states none.
+// 4. The improved scenario: the model that was judged, so that `freestand run` of it simulates
+// what the verdict is about. The user's settings with the first recording's bodies, interfaces
+// and gravity, as every run had them (recording_scenario: a SCENARIO body's own fields, its
+// contact grid among them, never ran), each body on the grid it ran on, and the effects.
 json Diagnoser::improved_scenario() {
   json improved = scenario_;
-  for (const char* key : {"bodies", "interfaces", "gravity"})
-    if (!improved.contains(key) && recordings_.front().nominal.contains(key)) improved[key] = recordings_.front().nominal[key];
-  if (!grid_.is_null())
-    for (json& b : improved["bodies"])
-      if (!stated_grid_.count(b.value("name", ""))) b["nodes"] = grid_;
+  for (const char* key : {"bodies", "interfaces", "gravity", "table_height"})
+    if (recordings_.front().nominal.contains(key)) improved[key] = recordings_.front().nominal[key];
+  const json& ran = base_.front()["bodies"];  // the nominal's bodies, in its order, with the grid check's grid
+  for (std::size_t i = 0; i < ran.size(); ++i)
+    if (ran[i].contains("nodes")) improved["bodies"][i]["nodes"] = ran[i]["nodes"];
   for (const Effect& e : d_.effects) {
     if (e.verdict == "measurement") continue;  // corrects the replayed recording, not the model
     try {

@@ -326,15 +326,24 @@ TEST(Diagnosis, NamesAndRecoversShortCorner) {
 }
 
 // The model is the truth: nothing significant may be found.
+//
+// The SCENARIO here also states the block with another contact grid: the recording's nominal
+// supplies the bodies, so that grid never runs, and the improved scenario must state the grid
+// that did (the nominal's corners), or `freestand run` of it would simulate another model
+// than the one judged (a distributed base rocks differently: study 18).
 TEST(Diagnosis, NoEffectFindsNoMissingPhysics) {
   test::TempDir dir;
   const Recording recording = rocking_recording(rocking_scenario(0.3), dir, 12);
   diagnosis::Options o = fast_options(dir);
   o.max_effects = 1;
-  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
+  json scenario = model(0.3);
+  scenario["bodies"] = rocking_scenario(0.3)["bodies"];
+  scenario["bodies"][0]["nodes"] = {{"layout", "surface"}, {"per_edge", 4}};
+  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {recording}, o);
   std::cerr << d.verdict;
   EXPECT_TRUE(d.effects.empty());
   EXPECT_NE(d.verdict.find("No missing physics found"), std::string::npos);
+  EXPECT_EQ(d.improved["bodies"][0]["nodes"], recording.nominal["bodies"][0]["nodes"]);
 }
 
 // Every sensor of the block on another clock, 40 ms behind the table's (here the release at
