@@ -766,7 +766,7 @@ json recording_scenario(const json& model, const Recording& recording, const std
   json doc = model;
   doc.erase("table_motion");
   doc.erase("duration");
-  for (const char* key : {"bodies", "interfaces", "gravity", "table_height"})
+  for (const char* key : kNominalModelKeys)
     if (recording.nominal.contains(key)) doc[key] = recording.nominal[key];
   const double length = recording.time.back() - recording.time.front();
   doc["simulation"]["duration"] = length;

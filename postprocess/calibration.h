@@ -52,6 +52,10 @@ enum class RecordingKind {
 RecordingKind classify_recording(const Recording& recording);
 const char* kind_name(RecordingKind kind);
 
+// What a recording's nominal states of the model, and a re-run takes from it
+// whatever the model says (recording_scenario, the improved scenario of diagnose).
+inline constexpr const char* kNominalModelKeys[] = {"bodies", "interfaces", "gravity", "table_height"};
+
 // The scenario document that re-runs `recording` under `model` (its contact
 // and simulation settings): the recording's bodies, interfaces, gravity and
 // table_height, its duration and sampling rate, and its table acceleration as

@@ -1713,7 +1713,7 @@ void Diagnoser::against_improved(const std::vector<Features>& final_members) {
 // contact grid among them, never ran), each body on the grid it ran on, and the effects.
 json Diagnoser::improved_scenario() {
   json improved = scenario_;
-  for (const char* key : {"bodies", "interfaces", "gravity", "table_height"})
+  for (const char* key : kNominalModelKeys)
     if (recordings_.front().nominal.contains(key)) improved[key] = recordings_.front().nominal[key];
   const json& ran = base_.front()["bodies"];  // the nominal's bodies, in its order, with the grid check's grid
   for (std::size_t i = 0; i < ran.size(); ++i)
