@@ -151,6 +151,11 @@ void rings(const std::vector<Vector3d>& p, const Vector3d& c, const Vector3d& nr
     for (size_t j = 0; j + 1 < ring[nr][k].size(); ++j) b->boundary.push_back(ring[nr][k][j]);
 }
 
+bool has_face(const Clump& body, const FaceRef& ref) {
+  return ref.piece >= 0 && ref.piece < static_cast<int>(body.pieces().size()) && ref.face >= 0 &&
+         ref.face < static_cast<int>(body.pieces()[ref.piece].faces().size());
+}
+
 }  // namespace
 
 PolygonNodes polygon_nodes(const std::vector<Vector3d>& loop, const Vector3d& normal, const NodeOptions& options) {
@@ -225,8 +230,7 @@ std::vector<ContactNode> make_contact_nodes(const Clump& body, const NodeOptions
   }
   for (size_t a = 0; a < faces.size(); ++a) {
     const FaceRef& ref = faces[a];
-    if (ref.piece < 0 || ref.piece >= static_cast<int>(body.pieces().size()) || ref.face < 0 ||
-        ref.face >= static_cast<int>(body.pieces()[ref.piece].faces().size()))
+    if (!has_face(body, ref))
       throw InputError(fmt::format("contact nodes: no face {} on piece {}", ref.face, ref.piece));
     if (body.cover(ref) == FaceCover::kCovered)
       throw InputError(fmt::format("contact nodes: face {} of piece {} lies against another piece (inside the body)",
@@ -236,13 +240,21 @@ std::vector<ContactNode> make_contact_nodes(const Clump& body, const NodeOptions
         throw InputError(fmt::format("contact nodes: face {} of piece {} is selected twice", ref.face, ref.piece));
   }
 
+  for (const FaceRef& ref : options.refined)  // a refined face without nodes (not in `faces`) is no error
+    if (!has_face(body, ref)) throw InputError(fmt::format("contact nodes: no face {} on piece {}", ref.face, ref.piece));
+  NodeOptions corners = options;
+  corners.spacing = 0.0;
+  corners.per_edge = 1;
+
   std::vector<ContactNode> nodes;
   for (const FaceRef& ref : faces) {
     const ConvexShape& shape = body.pieces()[ref.piece];
     const ShapeFace& face = shape.faces()[ref.face];
     std::vector<Vector3d> loop;
     for (int v : face.loop) loop.push_back(shape.vertices()[v]);
-    const PolygonNodes pn = polygon_nodes(loop, face.normal, options);
+    const bool refined = options.refined.empty() ||
+                         std::find(options.refined.begin(), options.refined.end(), ref) != options.refined.end();
+    const PolygonNodes pn = polygon_nodes(loop, face.normal, refined ? options : corners);
     for (size_t i = 0; i < pn.position.size(); ++i) {
       ContactNode node;
       node.position = pn.position[i];

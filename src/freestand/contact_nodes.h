@@ -32,6 +32,8 @@ struct NodeOptions {
   int per_edge = 1;      // with spacing == 0: every face edge is cut into this many segments
   NodeLayout layout = NodeLayout::kSurface;
   std::vector<FaceRef> faces;  // faces that get nodes; empty: every face not kCovered
+  std::vector<FaceRef> refined;  // faces cut at spacing/per_edge; empty: all. The others get their
+                                 // corners only (per_edge 1), enough for a toppled body to land on
   BaseShape base;              // base not flat: its nodes move (the exactness below is then
                                // that of the moved base, base_shape.h)
 };

@@ -141,9 +141,15 @@ Clump parse_shape(const json& body, const std::string& where) {
   return Clump(list, where + ": clump");
 }
 
-NodeOptions parse_nodes(const json& body, const NodeOptions& fallback, const std::string& where) {
+// "nodes": {"spacing": H | "per_edge": N, "layout": L, "refine": "all" | "bearing"}.
+NodeOptions parse_nodes(const json& body, const Clump& geometry, const NodeOptions& fallback,
+                        const std::string& where) {
   if (!body.contains("nodes")) return fallback;
   const json& n = body.at("nodes");
+  if (!n.is_object()) fail(where, "nodes: must be an object with 'per_edge' or 'spacing', 'layout', 'refine'");
+  for (const auto& [key, value] : n.items())
+    if (key != "spacing" && key != "per_edge" && key != "layout" && key != "refine")
+      fail(where, fmt::format("nodes: unknown key '{}' (spacing, per_edge, layout, refine)", key));
   NodeOptions options = fallback;
   if (n.contains("spacing")) options.spacing = positive(n, "spacing", where);
   if (n.contains("per_edge")) options.per_edge = static_cast<int>(positive(n, "per_edge", where));
@@ -153,6 +159,12 @@ NodeOptions parse_nodes(const json& body, const NodeOptions& fallback, const std
     else if (layout == "boundary") options.layout = NodeLayout::kBoundary;
     else if (layout == "vertices") options.layout = NodeLayout::kVertices;
     else fail(where, fmt::format("nodes: unknown layout '{}' (surface, boundary, vertices)", layout));
+  }
+  if (n.contains("refine")) {
+    const std::string refine = n.at("refine").is_string() ? n.at("refine").get<std::string>() : "";
+    if (refine == "bearing") options.refined = geometry.bearing_faces();
+    else if (refine == "all") options.refined.clear();
+    else fail(where, fmt::format("nodes: refine must be \"all\" or \"bearing\", got {}", n.at("refine").dump()));
   }
   return options;
 }
@@ -229,7 +241,7 @@ BodySpec parse_body(const json& j, const SceneDefaults& defaults, const std::str
     body.orientation = quaternion(j, "orientation", where);
   }
   body.position = vector3_or(j, "position", where, Eigen::Vector3d::Constant(NAN));
-  body.nodes = parse_nodes(j, defaults.nodes, where);
+  body.nodes = parse_nodes(j, body.geometry, defaults.nodes, where);
   body.nodes.base = parse_base(j, body.geometry, where);
   return body;
 }

@@ -210,17 +210,25 @@ double Clump::bounding_radius(const Vector3d& centre) const {
   return r;
 }
 
-std::vector<FaceRef> Clump::base_faces() const {
-  const double zmin = bounding_box().min().z();
+std::vector<FaceRef> Clump::level_faces(double up) const {
+  const double level = up > 0.0 ? bounding_box().max().z() : bounding_box().min().z();
   std::vector<FaceRef> out;
   for (size_t i = 0; i < pieces_.size(); ++i)
     for (size_t f = 0; f < pieces_[i].faces().size(); ++f) {
       const ShapeFace& face = pieces_[i].faces()[f];
-      if (face.normal.z() < 0.0 && std::hypot(face.normal.x(), face.normal.y()) <= 1e-9) {
-        if (std::abs(face.offset + zmin) <= tolerance_ && cover_[i][f] != FaceCover::kCovered)
+      if (face.normal.z() * up > 0.0 && std::hypot(face.normal.x(), face.normal.y()) <= 1e-9) {
+        if (std::abs(face.offset - up * level) <= tolerance_ && cover_[i][f] != FaceCover::kCovered)
           out.push_back({static_cast<int>(i), static_cast<int>(f)});
       }
     }
+  return out;
+}
+
+std::vector<FaceRef> Clump::base_faces() const { return level_faces(-1.0); }
+
+std::vector<FaceRef> Clump::bearing_faces() const {
+  std::vector<FaceRef> out = level_faces(-1.0);
+  for (const FaceRef& f : level_faces(1.0)) out.push_back(f);
   return out;
 }
 

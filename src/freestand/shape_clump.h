@@ -73,6 +73,9 @@ class Clump {
   // Faces whose outward normal is -z (within 1e-9 rad) and that lie in the
   // lowest plane z = min z of the clump: the faces a body stands on.
   std::vector<FaceRef> base_faces() const;
+  // The base faces and the faces whose outward normal is +z in the highest
+  // plane: where a body bears on what supports it and what it supports.
+  std::vector<FaceRef> bearing_faces() const;
 
   // Signed distance to the union of the pieces. Outside every piece: the
   // exact Euclidean distance (minimum over pieces). Inside a piece: the
@@ -84,6 +87,8 @@ class Clump {
 
  private:
   void classify_faces(const std::string& what);
+  // Exposed faces with outward normal `up` * z (up = +-1) in the top or bottom plane.
+  std::vector<FaceRef> level_faces(double up) const;
 
   std::vector<ConvexShape> pieces_;
   std::vector<std::vector<FaceCover>> cover_;

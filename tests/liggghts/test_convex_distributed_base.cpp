@@ -66,16 +66,18 @@ std::vector<double> ratios(const std::vector<double>& t, const std::vector<doubl
 }
 
 // fix rigid/convex with the scene's block on `per_edge` cells per base edge
-// (0: `layout vertices`), `tangential_damping normal` as in the free-rocking tests.
-std::vector<double> grid_ratios(int per_edge, const Contact& contact, double dt) {
+// (0: `layout vertices`), `tangential_damping normal` as in the free-rocking tests;
+// `refine` "bearing": the side faces keep their corners only.
+std::vector<double> grid_ratios(int per_edge, const Contact& contact, double dt, const std::string& refine = "all") {
   const std::string tag = "distributed_base_" + std::to_string(::getpid()) + "_n" +
                           std::to_string(per_edge) + "_k" + fv::num(contact.stiffness) + "_e" +
-                          fv::num(contact.restitution) + "_dt" + fv::num(dt);
+                          fv::num(contact.restitution) + "_dt" + fv::num(dt) + "_" + refine;
   const fs::path dir = fv::fresh_dir(tag);
   nlohmann::json scene;
   std::ifstream(fv::source_path("inputs/convex/free_rocking_block.json")) >> scene;
-  scene["bodies"][0]["nodes"] = per_edge == 0 ? nlohmann::json{{"layout", "vertices"}}
-                                              : nlohmann::json{{"layout", "surface"}, {"per_edge", per_edge}};
+  scene["bodies"][0]["nodes"] =
+      per_edge == 0 ? nlohmann::json{{"layout", "vertices"}}
+                    : nlohmann::json{{"layout", "surface"}, {"per_edge", per_edge}, {"refine", refine}};
   std::ofstream(dir / "scene.json") << scene.dump(1);
   const fs::path out = dir / "out.txt";
   std::ofstream script(dir / "run.in");
@@ -160,6 +162,21 @@ TEST(ConvexDistributedBase, GridConvergesToWinklerFoundation) {
     const double finest = r.back()[impact];
     EXPECT_NEAR(loss_ratio(finest) / loss_ratio(winkler[impact]), 1.0, 0.03) << "impact " << impact + 1;
   }
+}
+
+// Only the bearing faces refined (`refine bearing`): a block rocking on its base presses
+// the base's nodes only (a side face's nodes on the base edge act with the base's share,
+// plane_contact_nodes.h), so the side faces' grid cannot change the motion: r equal to
+// the full grid's to round-off (1e-9 allows the summation order of the forces). That the
+// side faces are then coarse is Nodes.RefinedFacesOnlyKeepEveryFaceExact's.
+TEST(ConvexDistributedBase, RefiningOnlyTheBearingFacesIsTheFullGrid) {
+  const Contact contact{1e8, 0.1};
+  const std::vector<double> all = grid_ratios(8, contact, 1e-5);
+  const std::vector<double> bearing = grid_ratios(8, contact, 1e-5, "bearing");
+  std::cout << row("k_a 1e8, e 0.1, per_edge 8, bearing faces only", bearing) << "\n";
+  ASSERT_GE(all.size(), 2u);
+  ASSERT_EQ(bearing.size(), all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) EXPECT_NEAR(bearing[i], all[i], 1e-9) << "impact " << i + 1;
 }
 
 // Corner contact (per_edge 1 = `layout vertices`, a quarter of the base on

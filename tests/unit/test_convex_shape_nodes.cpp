@@ -339,6 +339,33 @@ TEST(Nodes, BaseOnlySelection) {
   EXPECT_NEAR(area, body.pieces()[0].faces()[0].area, 1e-14);
 }
 
+// Refining only the bearing faces (base and top) keeps every face's area and first moment
+// exact (the corners-only faces are grids of one cell) and cuts the node count: a box at 8
+// segments per edge has 6 x 81 nodes on all faces, 2 x 81 + 4 x 4 on its bearing faces.
+TEST(Nodes, RefinedFacesOnlyKeepEveryFaceExact) {
+  const Clump body(ConvexShape::box(Vector3d(0.2, 0.3, 0.8)));
+  NodeOptions o;
+  o.per_edge = 8;
+  o.refined = body.bearing_faces();
+  ASSERT_EQ(o.refined.size(), 2u);
+  const auto nodes = freestand::make_contact_nodes(body, o);
+  EXPECT_EQ(nodes.size(), 2u * 81u + 4u * 4u);
+  const auto& faces = body.pieces()[0].faces();
+  for (size_t f = 0; f < faces.size(); ++f) {
+    double area = 0;
+    Vector3d moment = Vector3d::Zero();
+    for (const ContactNode& n : nodes)
+      if (n.face == static_cast<int>(f)) {
+        area += n.area;
+        moment += n.area * n.position;
+      }
+    EXPECT_NEAR(area, faces[f].area, 1e-12);
+    EXPECT_LE((moment - faces[f].area * faces[f].centroid).norm(), 1e-12);
+  }
+  o.refined = {{0, 9}};
+  EXPECT_THROW(freestand::make_contact_nodes(body, o), freestand::InputError);
+}
+
 TEST(Nodes, CountsForTypicalBodies) {
   // The Duzce block (1 x 1 x 3 m) and a 20-sided column drum (r 0.5 m, 0.6 m
   // high). Box faces are n_u x n_v grids: at h = 0.1, 11 x 11 on the base and

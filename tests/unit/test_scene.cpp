@@ -1,5 +1,7 @@
 // Scene files: the nominal.json vocabulary turned into bodies and interfaces.
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -80,6 +82,22 @@ TEST(Scene, BadInputIsNamed) {
   doc["interfaces"][0]["mu_s"] = 0.2;
   doc["interfaces"][0]["mu_k"] = 0.5;
   expect_error(doc, "mu");
+  doc = tower_on_pedestal();
+  doc["bodies"][1]["nodes"] = {{"per_edge", 8}, {"refine", "sides"}};
+  expect_error(doc, "body 'tower': nodes: refine must be \"all\" or \"bearing\"");
+  doc["bodies"][1]["nodes"] = {{"per_edge", 8}, {"spcing", 0.1}};
+  expect_error(doc, "body 'tower': nodes: unknown key 'spcing'");
+}
+
+TEST(Scene, BearingRefinementCutsTheBaseAndTopFacesOnly) {
+  json doc = tower_on_pedestal();
+  doc["bodies"][0]["nodes"] = {{"per_edge", 8}, {"refine", "bearing"}};
+  const auto scene = freestand::parse_scene(doc, "test");
+  const auto& refined = scene.bodies[0].nodes.refined;
+  ASSERT_EQ(refined.size(), 2u);
+  for (const auto& f : refined)
+    EXPECT_NEAR(std::abs(scene.bodies[0].geometry.pieces()[f.piece].faces()[f.face].normal.z()), 1.0, 1e-12);
+  EXPECT_TRUE(scene.bodies[1].nodes.refined.empty());
 }
 
 TEST(Scene, HertzInterfaceRestsAtTheLinearOverlapByDefault) {
