@@ -102,8 +102,9 @@ std::string verdict_text(const Diagnosis& d) {
          "compared under what the table did.\n";
   for (const GridCheck& c : d.grid_checks)
     if (c.adopted)
-      v += fmt::format("Numerics: the model's contact grid was not converged (on the finest grid {} the features moved "
-                       "by {:.0f} against a 99 % limit of {:.0f}); refined to {}.\n", c.reference, c.distance, c.limit, c.grid);
+      v += fmt::format("Numerics: the model's contact grid was not converged for the model {} (on the finest grid {} the "
+                       "features moved by {:.0f} against a 99 % limit of {:.0f}); refined to {}.\n", c.model, c.reference,
+                       c.distance, c.limit, c.grid);
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
     const Mismatch& first = d.mismatches.front();
@@ -140,7 +141,7 @@ json diagnosis_json(const Diagnosis& d) {
               {"simulations", d.simulations}, {"notes", d.notes}, {"improved_scenario", d.improved}};
   out["grid_checks"] = json::array();
   for (const GridCheck& c : d.grid_checks)
-    out["grid_checks"].push_back({{"reference", json::parse(c.reference)}, {"distance", c.distance}, {"limit", c.limit},
+    out["grid_checks"].push_back({{"model", c.model}, {"reference", json::parse(c.reference)}, {"distance", c.distance}, {"limit", c.limit},
                                   {"adopted", c.adopted}, {"grid", c.grid.empty() ? json() : json::parse(c.grid)}});
   out["measurement_issues"] = json::array();
   for (const MeasurementIssue& m : d.measurement)

@@ -404,6 +404,48 @@ TEST(Diagnosis, RefinesAnUnconvergedContactGridBeforeLookingForPhysics) {
   EXPECT_NE(d.verdict.find("No missing physics found"), std::string::npos);
 }
 
+// A grid converged for the model as given need not be for a softer contact (study 18 of
+// docs/diagnose.md): the block is believed stiffer (10 x kStiffness) than it is (7 times
+// softer than that, on a distributed base, 8 per edge). The grid check at the nominal converges
+// on a grid coarser than the finest (measured: 4 per edge); the check
+// at the softest stiffness the profile reaches must then adopt the finest grid, and the
+// search, on it, name the softer contact. Tolerance on k: a factor 2, as in
+// NamesASofterContactNotANarrowerBase (rocking pins k loosely).
+TEST(Diagnosis, RefinesTheGridForTheSoftContactsItWillTest) {
+  test::TempDir dir;
+  const double believed = 10 * kStiffness, truth_k = believed / 7;
+  json truth = rocking_scenario(0.3);
+  truth["contact"]["stiffness"] = truth_k;
+  truth["bodies"][0]["nodes"] = {{"layout", "surface"}, {"per_edge", 8}};
+  Recording recording = rocking_recording(truth, dir, 17);
+  for (json& b : recording.nominal["bodies"]) b.erase("nodes");
+  recording.nominal["contact"] = {{"stiffness", believed}};
+  json scenario = model(0.3);
+  scenario["contact"]["stiffness"] = believed;
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {recording}, o);
+  std::cerr << d.verdict;
+  ASSERT_GE(d.grid_checks.size(), 2u);
+  const diagnosis::GridCheck& as_given = d.grid_checks[d.grid_checks.size() - 2];
+  const diagnosis::GridCheck& soft = d.grid_checks.back();
+  EXPECT_EQ(as_given.model, "as given");
+  EXPECT_FALSE(as_given.adopted);  // converged for the nominal on a grid coarser than the finest (measured: 4 per edge)
+  EXPECT_EQ(soft.model.rfind("with soft contacts", 0), 0u);
+  EXPECT_TRUE(soft.adopted);
+  for (const diagnosis::GridCheck& c : d.grid_checks)
+    std::cout << fmt::format("measured: grid check {}: {:.1f} against {:.1f}\n", c.model, c.distance, c.limit);
+  EXPECT_EQ(d.improved["bodies"][0]["nodes"].value("per_edge", 0), 8);
+  ASSERT_FALSE(d.effects.empty());
+  const diagnosis::Effect& e = d.effects.front();
+  EXPECT_EQ(e.fit.candidate.entry, "contact_stiffness");
+  if (e.fit.candidate.entry == "contact_stiffness") {
+    EXPECT_GT(e.fit.value, truth_k / 2);
+    EXPECT_LT(e.fit.value, truth_k * 2);
+    expect_standard_error_covers(e.fit, truth_k);
+  }
+}
+
 // A block rocks for 1.9 s and then rests. A drift of 1 mrad/s added to its rock_x channel
 // must be measured where the recording and the simulation both rest (until the drift itself
 // tilts the channel beyond the rest threshold at about 3.5 s: 1.6 s of 1 mrad noise at 200 Hz,
