@@ -869,15 +869,16 @@ std::vector<Recording> shooting_pieces(const std::vector<Recording>& recordings,
 }
 
 // The contact node grid of every body not in `stated` set to the surface layout (nodes inside
-// the faces too, a distributed contact) with `per_edge` segments per edge on the bearing faces
-// (the side faces keep their corners: the same motion on the base at less cost). Returns the
-// grid, null when every body states its own.
+// the faces too, a distributed contact) with `per_edge` segments per edge on every face (not
+// `refine: bearing`: on a body-on-body contact a side face's corner nodes at the bearing edge
+// act, weighted by their facing, and move a stack's rocking; docs/fix_rigid_convex.md).
+// Returns the grid, null when every body states its own.
 json set_grid(Model& model, const std::set<std::string>& stated, int per_edge) {
   json grid;
   for (json& document : model)
     for (json& b : document["bodies"]) {
       if (stated.count(b.value("name", ""))) continue;
-      b["nodes"] = {{"layout", "surface"}, {"per_edge", per_edge}, {"refine", "bearing"}};
+      b["nodes"] = {{"layout", "surface"}, {"per_edge", per_edge}};
       if (grid.is_null()) grid = b["nodes"];
     }
   return grid;
