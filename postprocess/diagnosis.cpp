@@ -144,7 +144,13 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     for (std::size_t i = 0; i < s.slips.size(); ++i) {
       const double slip = std::hypot(s.slips[i].slip_x, s.slips[i].slip_y);
       if (std::isfinite(slip)) total_slip += slip;
-      if (i < kEventsPerAxis) add(fmt::format("slip{}.length", i + 1), slip, s.slips[i].onset, p.length_noise, "slide", true);
+      if (i >= kEventsPerAxis) continue;
+      // The onset dates the slip as an impact's time dates the impact: the table acceleration
+      // that starts it (the slip threshold) is the recorded one replayed, so a slip starts at
+      // the same instant in every member up to the sensors, and a body clock's delay shows.
+      const std::string e = fmt::format("slip{}", i + 1);
+      add(e + ".time", s.slips[i].onset, s.slips[i].onset, dt, "slide", true);
+      add(e + ".length", slip, s.slips[i].onset, p.length_noise, "slide", false);
     }
     if (!body.motion.channels[analysis::kSlideX].empty())
       add("total_slip", total_slip, s.slips.empty() ? 0 : s.slips.front().onset, p.length_noise, "slide", false);
@@ -611,6 +617,18 @@ std::vector<double> profile_offsets(double u0, int count, double scale) {
   return out;
 }
 
+// The quick profile's scaled points about u0: candidate c's own ladder, or profile_offsets'.
+std::vector<double> quick_profile(const Candidate& c, double u0, int count) {
+  if (c.ladder.empty()) return profile_offsets(u0, count, c.profile_scale);
+  std::vector<double> out;
+  for (double step : c.ladder) {
+    const double u = std::clamp(u0 + step, 0.0, 1.0);
+    if (std::abs(u - u0) > 1e-9 && std::none_of(out.begin(), out.end(), [&](double v) { return std::abs(u - v) < 1e-9; }))
+      out.push_back(u);
+  }
+  return out;
+}
+
 struct Profile {
   std::vector<double> u;                       // scaled points
   std::vector<std::vector<Features>> members;  // per point, the features of each member it ran as
@@ -656,6 +674,7 @@ FittedCandidate summarise(const Candidate& c, const Profile& p, const Target& ta
   const double sd_u = minimum.sd * birge_ratio(curve[best].second, target.count(false));
   f.standard_error = sd_u * scaled_unit(c);
   f.evaluations = static_cast<int>(p.u.size());
+  for (const auto& [u, chi2] : curve) f.profile.push_back({to_value(c, u), chi2});
   f.held_out_delta = signal::kNaN;  // not measured: left so for a candidate the screen and tests do not reach
   if (held_available) {
     for (std::size_t i = 0; i < p.u.size(); ++i)
@@ -780,6 +799,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
   f.standard_error = profile_minimum(curve, 3).sd * birge_ratio(curve[best].second, fit_count) * (c.upper - c.lower);
   if (held_available) f.held_out_delta = held_base - held_curve[best].second;
   f.evaluations = 0;
+  for (const auto& [u, chi2] : curve) f.profile.push_back({to_value(c, u), chi2});
   return f;
 }
 
@@ -1205,7 +1225,7 @@ void Diagnoser::check_soft_grid(const json& finest_grid) {
   std::vector<std::string> softened;
   for (const Candidate& c : candidates_) {
     if (c.entry != "contact_stiffness" && c.entry != "interface_compliance") continue;
-    const std::vector<double> u = profile_offsets(to_scaled(c, c.nominal), options_.profile_points, c.profile_scale);
+    const std::vector<double> u = quick_profile(c, to_scaled(c, c.nominal), options_.profile_points);
     if (u.empty()) continue;
     const double value = to_value(c, *std::min_element(u.begin(), u.end()));
     soft = applied(soft, c, value);
@@ -1358,7 +1378,7 @@ Round Diagnoser::profiled(int number) {
     const Candidate& c = candidates_[i];
     const double u0 = to_scaled(c, c.nominal);
     r.profiles[i].u.push_back(u0), r.profiles[i].members.push_back(baseline);
-    for (double u : profile_offsets(u0, options_.profile_points, c.profile_scale)) {
+    for (double u : quick_profile(c, u0, options_.profile_points)) {
       r.profiles[i].u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
@@ -1699,6 +1719,7 @@ void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alik
   // Re-fitted later around its value with steps a tenth of a new candidate's: the first fit's
   // error must not pass for another effect.
   candidates_[best].nominal = f.value, candidates_[best].profile_scale = 0.1, candidates_[best].at_boundary = false;
+  candidates_[best].ladder.clear();
   // The scatter of chaos and noise depends on the model: from now on the ensemble around the
   // improved one.
   ensemble_runs_ = r.tested[best];

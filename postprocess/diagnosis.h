@@ -56,6 +56,8 @@ struct Candidate {
   // scaled by 0.1: a new candidate must beat a better value of the old one.
   int effect = -1;           // index in Diagnosis::effects, or -1
   double profile_scale = 1;  // the quick profile's steps (0.01 x 4^k of the range) times this
+  std::vector<double> ladder;  // when not empty, the quick profile's offsets from the nominal instead
+                               // (scaled units, signed); cleared once the candidate is accepted
 };
 // a and b are of similar signature: b's entry is listed as similar to a's, and two body
 // candidates are on the same body.
@@ -148,6 +150,7 @@ struct FittedCandidate {
   double delta_bic = 0;       // delta - 2 delta_se - ln(n): > 0 favours the candidate
   double held_out_delta = 0;  // improvement on the held-out features, value fitted without them
   int evaluations = 0;
+  std::vector<std::pair<double, double>> profile;  // (value, chi2 + prior) of each profile point, by value
 };
 
 struct Effect {               // an accepted candidate

@@ -160,9 +160,15 @@ void interface_candidates(const json& document, const Scene& scene, const Record
     k.apply = [lower, upper, area](json& d, double v) { interface_entry(d, lower, upper)["contact_stiffness"] = v * area; };
     // A contact's stiffness is known to an order of magnitude at best (a stone joint "ten times
     // softer than believed"), and a small change of it hardly moves the events: the quick profile
-    // steps by factors of 1.15, 1.8 and 10 (the ladder's 0.16 of the range scaled to ln 10), where
-    // the default 7 %, 32 % and 3x would never leave the nominal's decade.
-    k.profile_scale = std::log(10.0) / (0.16 * std::log(k.upper / k.lower));
+    // steps by factors of 1.15 and 1.8 each way, then by quarter decades down to k0/100 and half
+    // decades up to the range's end, where the default 7 %, 32 % and 3x would never leave the
+    // nominal's decade. Quarter decades on the soft side because a chaotic record's misfit is no
+    // smooth function of a softer contact: case03 of study 19 (a contact 19 times softer) fits
+    // at k0/19 (chi2 29 on the ensemble) and k0/14 (46), but not at k0/10 (worse than the
+    // nominal) nor k0/32 (119), and a ladder of half decades stepped over it.
+    const double decade = std::log(10.0) / std::log(k.upper / k.lower);  // in scaled units
+    for (double d : {1.0 / 16, 0.25, 0.5, 1.0}) k.ladder.push_back(d * decade);
+    for (double d : {1.0 / 16, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0}) k.ladder.push_back(-d * decade);
     out.push_back(k);
     if (!slides) {
       if (skipped) skipped->push_back(fmt::format("friction candidates of {}: no slide channel of '{}'", where, upper));

@@ -130,7 +130,8 @@ json diagnosis_json(const Diagnosis& d) {
                 {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
                 {"range", {f.candidate.lower, f.candidate.upper}}, {"stated", f.candidate.stated},
                 {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
-                {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations}};
+                {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations},
+                {"profile", f.profile}};
   };
   auto mismatch = [](const Mismatch& m) {
     return json{{"feature", m.feature}, {"body", m.body}, {"mode", m.mode}, {"time", m.time},

@@ -99,6 +99,16 @@ diagnosis::Diagnosis diagnose_restitution(const test::TempDir& dir, const diagno
   EXPECT_NEAR(d.effects.front().fit.value, 0.35, 0.05);
   expect_standard_error_covers(d.effects.front().fit, 0.35);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
+  // The profile reported (--json) is the one fitted: every point, by value, lowest at the
+  // parabola's bracket (the value lies between the lowest point's neighbours).
+  const auto& profile = d.effects.front().fit.profile;
+  EXPECT_EQ(static_cast<int>(profile.size()), d.effects.front().fit.evaluations);
+  EXPECT_TRUE(std::is_sorted(profile.begin(), profile.end()));
+  const auto lowest = std::min_element(profile.begin(), profile.end(), [](auto& a, auto& b) { return a.second < b.second; });
+  if (lowest != profile.begin() && lowest + 1 != profile.end()) {
+    EXPECT_GT(d.effects.front().fit.value, (lowest - 1)->first);
+    EXPECT_LT(d.effects.front().fit.value, (lowest + 1)->first);
+  }
   return d;
 }
 
@@ -647,6 +657,45 @@ TEST(Diagnosis, TakesAVerticalTableCarryForPhysicsNotForADrift) {
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);
   for (const diagnosis::MeasurementIssue& m : d.measurement)  // the carry is explained, not corrected away
     if (m.drift_significant) EXPECT_LT(std::abs(m.drift), 0.05 * 0.32) << m.text;
+}
+
+// A squat-enough block (b/h = 1/3) on friction 0.2 slides and cannot rock: sliding caps the
+// table's pull at mu g = 1.96 m/s^2, below the 3.3 m/s^2 that lifts an edge. Three one-sine
+// pulses of 3 m/s^2 at 2 Hz make six slips, and the block's sensors run 30 ms behind the
+// table's. A slider has no impacts to date: its slip onsets are what the delay moves (the table
+// acceleration that starts each slip is the recorded one replayed), and the diagnosis must
+// report the delay and name no physics. Tolerance 10 ms: two steps of the delay grid (5 ms).
+TEST(Diagnosis, MeasuresASlidersClockOffsetFromItsSlipOnsets) {
+  test::TempDir dir;
+  const double mu = 0.2, delay = 0.03;
+  json truth = standing_on(pulses_table(dir, "slides", {{0.2, 3.0, 2.0}, {1.2, -3.0, 2.0}, {2.2, 3.0, 2.0}}, 3.5), 3.5);
+  truth["interfaces"][0]["mu"] = mu;
+  Recording r = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 41});
+  std::vector<RecordingChannel> kept;
+  for (RecordingChannel& c : r.channels) {
+    if (c.name != "table_ax" && c.name != "block.slide_x" && c.name != "block.slide_y") continue;
+    const std::vector<double> y = c.values;
+    if (c.name != "table_ax")
+      for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(r.time, y, r.time[k] - delay);
+    kept.push_back(c);
+  }
+  r.channels = kept;
+  r.path = "late_slider";
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  json scenario = model(0.3);
+  scenario["contact"]["mu"] = mu;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {r}, o);
+  std::cerr << d.verdict;
+  EXPECT_TRUE(d.effects.empty());
+  ASSERT_FALSE(d.measurement.empty());
+  // The body's clock or slide_x's alone: slide_y stays at zero, so the two fit alike (and the
+  // verdict says so).
+  EXPECT_EQ(d.measurement.front().channel.rfind("block", 0), 0u) << d.measurement.front().channel;
+  EXPECT_TRUE(d.measurement.front().delay_significant);
+  EXPECT_NEAR(d.measurement.front().delay, delay, 0.01);
+  std::cout << fmt::format("measured: delay of {} = {:.4f} s for {}\n", d.measurement.front().channel,
+                           d.measurement.front().delay, delay);
 }
 
 TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
