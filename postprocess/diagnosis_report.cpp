@@ -81,6 +81,24 @@ std::string overlay(const Diagnosis& d, const OverlaidChannel& o) {
   return svg::render(plot);
 }
 
+// An effect's quick profile and refinements: the misfit of each point (the profile's members, on
+// the fit window) against the value, a log-scale parameter on log10 of it; the nominal and the
+// value named marked. A point whose run failed is left out.
+std::string profile_figure(const Effect& e) {
+  const Candidate& c = e.fit.candidate;
+  const auto x_of = [&](double v) { return c.log_scale ? std::log10(v) : v; };
+  svg::LinePlot plot;
+  plot.title = fmt::format("{}: profile", c.name);
+  plot.x = {c.log_scale ? "log10 " + c.entry : c.entry, c.unit, {}, {}};
+  plot.y = {"misfit chi2", "", {}, {}};
+  svg::Series points{"profile points", {}, {}, false};
+  for (const auto& [value, chi2] : e.fit.profile)
+    if (std::isfinite(chi2)) points.x.push_back(x_of(value)), points.y.push_back(chi2);
+  plot.series.push_back(points);
+  plot.markers = {{x_of(c.nominal), "model as given"}, {x_of(e.fit.value), "named"}};
+  return svg::render(plot);
+}
+
 Table candidate_table(const Diagnosis& d, std::size_t round) {
   Table t;
   t.caption = fmt::format("Round {}: every candidate's 1-D profile fit (one tested on its ensemble: the drop over every "
@@ -139,6 +157,11 @@ void add_diagnosis_sections(HtmlReport& report, const Diagnosis& d) {
     report.add_figure(overlay(d, o), o.title + ": the recording (corrected for accepted measurement issues), "
                                                "the model as given (dashed) and the improved model");
   report.add_section("Candidates");
+  for (const Effect& e : d.effects)
+    if (e.fit.profile.size() > 1)
+      report.add_figure(profile_figure(e), e.fit.candidate.name + ": the misfit along its profile (one run per point "
+                                           "unless --profile-members says more, on the fit window), the value named "
+                                           "after the ensemble test");
   for (std::size_t r = 0; r < d.rounds.size(); ++r) report.add_table(candidate_table(d, r));
   if (!d.hypotheses.empty()) report.add_table(hypothesis_table(d));
   report.add_section("Event features");

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <regex>
 
 namespace freestand::diagnosis {
@@ -36,6 +37,26 @@ TEST(DiagnosisReport, OverlaysTheChannelOfTheMismatchedFeatureOfItsRecording) {
   EXPECT_NE(html.find("r2:cube.uplift"), std::string::npos);
   EXPECT_EQ(html.find("r2:cube.bounce1"), html.find("r2:cube.bounce1.height")) << "no overlay of a non-channel";
   EXPECT_EQ(count_lines(html), 2) << "recording 2 and its model as given: one overlay, two lines";
+}
+
+// A named effect's profile is drawn on its parameter's scale (log10 for a stiffness), one line
+// through the points whose runs ran; a failed run's point (chi2 infinite) is left out, not drawn
+// off the chart.
+TEST(DiagnosisReport, DrawsANamedEffectsProfileOnItsScale) {
+  Diagnosis d;
+  Effect e;
+  e.fit.candidate.name = "contact_stiffness[table/block]", e.fit.candidate.entry = "contact_stiffness";
+  e.fit.candidate.unit = "N/m^3", e.fit.candidate.log_scale = true, e.fit.candidate.nominal = 1e10;
+  e.fit.value = 5.6e8;
+  e.fit.profile = {{1e8, 520}, {5.6e8, 19}, {1e9, 217}, {1e10, 187}, {1e11, std::numeric_limits<double>::infinity()}};
+  d.effects.push_back(e);
+  HtmlReport report("diagnosis");
+  add_diagnosis_sections(report, d);
+  const std::string html = report.html();
+  EXPECT_NE(html.find("contact_stiffness[table/block]: profile"), std::string::npos);
+  EXPECT_NE(html.find("log10 contact_stiffness"), std::string::npos);
+  EXPECT_EQ(html.find("inf"), std::string::npos) << "a failed point drawn";
+  EXPECT_EQ(count_lines(html), 1);
 }
 
 }  // namespace
