@@ -147,7 +147,8 @@ Features event_features(const Recording& recording, const json& analysis_nominal
       if (i >= kEventsPerAxis) continue;
       // The onset dates the slip as an impact's time dates the impact: the table acceleration
       // that starts it (the slip threshold) is the recorded one replayed, so a slip starts at
-      // the same instant in every member up to the sensors, and a body clock's delay shows.
+      // nearly the same instant in every member (up to the sensors and each member's table
+      // gain), and a body clock's delay shows.
       const std::string e = fmt::format("slip{}", i + 1);
       add(e + ".time", s.slips[i].onset, s.slips[i].onset, dt, "slide", true);
       add(e + ".length", slip, s.slips[i].onset, p.length_noise, "slide", false);
