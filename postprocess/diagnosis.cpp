@@ -95,9 +95,62 @@ void launched_features(const AnalysedBody& body, double size, const analysis::An
           c == analysis::kUplift ? "uplift" : "slide", false);
 }
 
-Features event_features(const Recording& recording, const json& analysis_nominal) {
+namespace {
+
+// `recording` with `analysis_nominal` in place of its own (its geometry and noise thresholds).
+Recording with_nominal(const Recording& recording, const json& analysis_nominal) {
   Recording r;
   r.path = recording.path, r.time = recording.time, r.channels = recording.channels, r.nominal = analysis_nominal;
+  return r;
+}
+
+// The number each of `slips` is named by (0-based): the reference slip it is matched to, and
+// the unmatched ones after the reference's, in time order; without a reference, its order.
+std::vector<int> slip_numbers(const std::vector<analysis::SlipEvent>& slips,
+                              const std::vector<analysis::SlipEvent>* reference) {
+  std::vector<int> number(slips.size());
+  if (!reference) {
+    std::iota(number.begin(), number.end(), 0);
+    return number;
+  }
+  number = matched_slips(slips, *reference);
+  int next = static_cast<int>(reference->size());
+  for (int& n : number)
+    if (n < 0) n = next++;
+  return number;
+}
+
+}  // namespace
+
+SlipReference slip_reference(const Recording& recording, const json& analysis_nominal) {
+  SlipReference out;
+  for (const AnalysedBody& body : analyse_recording(with_nominal(recording, analysis_nominal)))
+    out[body.name] = body.summary.slips;
+  return out;
+}
+
+std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
+                               const std::vector<analysis::SlipEvent>& reference) {
+  struct Pair {
+    double distance;  // s between the onsets
+    int slip, ref;
+  };
+  std::vector<Pair> overlapping;
+  for (std::size_t i = 0; i < slips.size(); ++i)
+    for (std::size_t j = 0; j < reference.size(); ++j)
+      if (slips[i].onset <= reference[j].stop && reference[j].onset <= slips[i].stop)
+        overlapping.push_back({std::abs(slips[i].onset - reference[j].onset), static_cast<int>(i), static_cast<int>(j)});
+  std::stable_sort(overlapping.begin(), overlapping.end(),
+                   [](const Pair& a, const Pair& b) { return a.distance < b.distance; });
+  std::vector<int> match(slips.size(), -1);
+  std::vector<bool> taken(reference.size(), false);
+  for (const Pair& p : overlapping)
+    if (match[p.slip] < 0 && !taken[p.ref]) match[p.slip] = p.ref, taken[p.ref] = true;
+  return match;
+}
+
+Features event_features(const Recording& recording, const json& analysis_nominal, const SlipReference* reference) {
+  const Recording r = with_nominal(recording, analysis_nominal);
   const analysis::AnalysisParameters p = parameters_for(analysis_nominal);
   const double dt = sample_step(r.time), end = r.time.back();
   Features out;
@@ -141,15 +194,19 @@ Features event_features(const Recording& recording, const json& analysis_nominal
             0, 1 / (end - r.time.front()), "rock", false);
     }
     double total_slip = 0;
+    const std::vector<analysis::SlipEvent>* reference_slips = nullptr;
+    if (reference)
+      if (const auto it = reference->find(body.name); it != reference->end()) reference_slips = &it->second;
+    const std::vector<int> numbers = slip_numbers(s.slips, reference_slips);
     for (std::size_t i = 0; i < s.slips.size(); ++i) {
       const double slip = std::hypot(s.slips[i].slip_x, s.slips[i].slip_y);
       if (std::isfinite(slip)) total_slip += slip;
-      if (i >= kEventsPerAxis) continue;
+      if (numbers[i] >= kEventsPerAxis) continue;
       // The onset dates the slip as an impact's time dates the impact: the table acceleration
       // that starts it (the slip threshold) is the recorded one replayed, so a slip starts at
       // nearly the same instant in every member (up to the sensors and each member's table
       // gain), and a body clock's delay shows.
-      const std::string e = fmt::format("slip{}", i + 1);
+      const std::string e = fmt::format("slip{}", numbers[i] + 1);
       add(e + ".time", s.slips[i].onset, s.slips[i].onset, dt, "slide", true);
       add(e + ".length", slip, s.slips[i].onset, p.length_noise, "slide", false);
     }
@@ -446,7 +503,16 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
 class Search {
  public:
   Search(const std::vector<Recording>& recordings, const Options& options, std::string directory)
-      : recordings_(recordings), options_(options), directory_(std::move(directory)) {}
+      : recordings_(recordings), options_(options), directory_(std::move(directory)) {
+    for (const Recording& r : recordings_) slip_references_.push_back(slip_reference(r, r.nominal));
+  }
+
+  // Recording r's event features, its slips named as those of r as given (matched_slips): a
+  // sensor's correction of the recording, which can split or drop a slip at the detection
+  // threshold, renames none of the others.
+  Features recorded_features(const Recording& recording, std::size_t r) const {
+    return prefixed(event_features(recording, recording.nominal, &slip_references_[r]), r);
+  }
 
   // Features of every job (prefixed with the recording number when there are
   // several); a failed simulation's hold kFailedSimulation alone.
@@ -510,7 +576,7 @@ class Search {
     for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sim))
       add_drift(sim, m.channel, m.drift, recorded.time.front());
     add_measurement_noise(sim, noise_for(recorded, job.seed, job.gains));
-    return prefixed(event_features(sim, recorded.nominal), job.recording);
+    return prefixed(event_features(sim, recorded.nominal, &slip_references_[job.recording]), job.recording);
   }
 
   // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,
@@ -576,6 +642,7 @@ class Search {
   int batches_ = 0;
   double window_end_ = signal::kNaN;  // s, the profiles' window's end (NaN: profiles run whole)
   std::vector<Recording> windows_;    // the recordings cut there
+  std::vector<SlipReference> slip_references_;  // the slips of each recording as given, which every run's are matched to
 };
 
 double to_value(const Candidate& c, double u) {
@@ -747,7 +814,7 @@ Target target_of_members(const std::vector<Recording>& recordings, const std::ve
                          const Search& search, const HeldOutRule& held) {
   Features recorded;
   for (std::size_t r = 0; r < recordings.size(); ++r) {
-    const Features f = search.prefixed(event_features(recordings[r], recordings[r].nominal), r);
+    const Features f = search.recorded_features(recordings[r], r);
     recorded.insert(f.begin(), f.end());
   }
   std::vector<std::vector<Features>> whole(members.size());

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "motion_analysis.h"
 #include "recording.h"
 #include "table_tracking.h"
 
@@ -83,9 +84,26 @@ using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.
 // The only key of a failed simulation's features: a model that does not run fits nothing (its
 // events are not merely absent).
 inline const std::string kFailedSimulation = "simulation_failed";
+// The slip events of every body of a recording (body -> its slips in time order): what the
+// slips of a simulation, or of the recording corrected, are matched to.
+using SlipReference = std::map<std::string, std::vector<analysis::SlipEvent>>;
+SlipReference slip_reference(const Recording& recording, const nlohmann::json& analysis_nominal);
+
+// For each of `slips`, the index of the `reference` slip it is the same event as, or -1.
+// Two slips are the same event when they overlap in time; one to one, the pairs with the
+// nearest onsets first. Not by their order: a short slip that one side has and the other
+// lacks (a pause that splits a slip in two, a slip at the detection threshold) would
+// renumber every later one, and their onsets would be compared across different events.
+std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
+                               const std::vector<analysis::SlipEvent>& reference);
+
 // Features of every body of `recording`, analysed with `analysis_nominal`'s
-// geometry and noise thresholds (the recording's nominal, for both sides).
-Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal);
+// geometry and noise thresholds (the recording's nominal, for both sides). Slip i names the
+// reference's slip i it is matched to (matched_slips); one matched to none is numbered on
+// after the reference's, in time order (an event the reference lacks). Without a reference,
+// slips are numbered in time order.
+Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal,
+                        const SlipReference* reference = nullptr);
 
 // A measurement issue of one channel: recorded ~ gain * simulated(t - delay) + bias + drift t.
 // A drift at rest belongs to each simulation it was measured against (added to it where
