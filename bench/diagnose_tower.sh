@@ -16,6 +16,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: [GRID=unstated] bench/diagnose_tower.sh OUT_DIR}
 grid=${GRID:-stated}
 mkdir -p "$out"
+out=$(cd "$out" && pwd)  # absolute: the speed reference runs in another folder
 scenario="$root/inputs/scenarios/statue_pedestal_duzce.json"
 truth_grid=()  # unstated: the truth rocks on a distributed base (8 per edge, every face), not the corners
 [ "$grid" = unstated ] && truth_grid=(--var 'bodies.tower.nodes={"layout":"surface","per_edge":8}'
