@@ -205,11 +205,9 @@ Features event_features(const Recording& recording, const json& analysis_nominal
       // The onset dates the slip as an impact's time dates the impact: the table acceleration
       // that starts it (the slip threshold) is the recorded one replayed, so a slip starts at
       // nearly the same instant in every member (up to the sensors and each member's table
-      // gain), and a body clock's delay shows. So does the stop, where the block sticks again:
-      // the kinetic friction and the same replayed table decide it.
+      // gain), and a body clock's delay shows.
       const std::string e = fmt::format("slip{}", numbers[i] + 1);
       add(e + ".time", s.slips[i].onset, s.slips[i].onset, dt, "slide", true);
-      add(e + ".stop", s.slips[i].stop, s.slips[i].stop, dt, "slide", false);
       add(e + ".length", slip, s.slips[i].onset, p.length_noise, "slide", false);
     }
     if (!body.motion.channels[analysis::kSlideX].empty())
