@@ -659,12 +659,6 @@ TEST(Diagnosis, TakesAVerticalTableCarryForPhysicsNotForADrift) {
     if (m.drift_significant) EXPECT_LT(std::abs(m.drift), 0.05 * 0.32) << m.text;
 }
 
-// A squat-enough block (b/h = 1/3) on friction 0.2 slides and cannot rock: sliding caps the
-// table's pull at mu g = 1.96 m/s^2, below the 3.3 m/s^2 that lifts an edge. Three one-sine
-// pulses of 3 m/s^2 at 2 Hz make six slips, and the block's sensors run 30 ms behind the
-// table's. A slider has no impacts to date: its slip onsets are what the delay moves (the table
-// acceleration that starts each slip is the recorded one replayed), and the diagnosis must
-// report the delay and name no physics. Tolerance 10 ms: two steps of the delay grid (5 ms).
 // Slips are the same event when they overlap, one to one, nearest onsets first: an extra
 // short slip, or one split in two by a pause, renumbers none of the others.
 TEST(DiagnosisFeatures, MatchesSlipsByTimeNotByOrder) {
@@ -687,13 +681,20 @@ TEST(DiagnosisFeatures, MatchesSlipsByTimeNotByOrder) {
   EXPECT_EQ(diagnosis::matched_slips(reference, reference), (std::vector<int>{0, 1, 2}));
 }
 
-// A block sliding to and fro under three one-sine pulses (six slips), its slide channels read
-// `delay` late (another clock) and, with `knock` > 0, carrying a push of `knock` metres and
-// back before the shaking (0.06-0.12 s), which the model does not have. Only table_ax and the
-// slide channels are kept.
-Recording late_slider(const test::TempDir& dir, double mu, double delay, double knock) {
+// A squat-enough block (b/h = 1/3) on friction 0.2 slides and cannot rock: sliding caps the
+// table's pull at mu g = 1.96 m/s^2, below the 3.3 m/s^2 that lifts an edge. Three one-sine
+// pulses of 3 m/s^2 at 2 Hz make six slips, and the block's sensors run 30 ms behind the
+// table's. A slider has no impacts to date: its slip onsets are what the delay moves (the table
+// acceleration that starts each slip is the recorded one replayed), and the diagnosis must
+// report the delay and name no physics. Tolerance 10 ms: two steps of the delay grid (5 ms).
+const double kSliderMu = 0.2, kSliderDelay = 0.03;
+
+// That block's recording, its slide channels kSliderDelay late and, with `knock` > 0, carrying
+// a push of `knock` metres and back before the shaking (0.06-0.12 s), which the model does not
+// have. Only table_ax and the slide channels are kept.
+Recording late_slider(const test::TempDir& dir, double knock) {
   json truth = standing_on(pulses_table(dir, "slides", {{0.2, 3.0, 2.0}, {1.2, -3.0, 2.0}, {2.2, 3.0, 2.0}}, 3.5), 3.5);
-  truth["interfaces"][0]["mu"] = mu;
+  truth["interfaces"][0]["mu"] = kSliderMu;
   Recording r = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 41});
   const double knock_start = 0.06, knock_length = 0.06;
   std::vector<RecordingChannel> kept;
@@ -706,7 +707,7 @@ Recording late_slider(const test::TempDir& dir, double mu, double delay, double 
       }
     const std::vector<double> y = c.values;
     if (c.name != "table_ax")
-      for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(r.time, y, r.time[k] - delay);
+      for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(r.time, y, r.time[k] - kSliderDelay);
     kept.push_back(c);
   }
   r.channels = kept;
@@ -714,15 +715,13 @@ Recording late_slider(const test::TempDir& dir, double mu, double delay, double 
   return r;
 }
 
-// The slider's clock delay, measured from its slip onsets (no physics named); tolerance 10 ms,
-// two samples at 200 Hz (the onsets are dated to a sample).
-void expect_slider_clock(const test::TempDir& dir, double knock) {
-  const double mu = 0.2, delay = 0.03;
+// The slider's clock delay, measured from its slip onsets, and no physics named.
+void expect_slider_clock(const test::TempDir& dir, const Recording& recording) {
   diagnosis::Options o = fast_options(dir);
   o.max_effects = 1;
   json scenario = model(0.3);
-  scenario["contact"]["mu"] = mu;
-  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {late_slider(dir, mu, delay, knock)}, o);
+  scenario["contact"]["mu"] = kSliderMu;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {recording}, o);
   std::cerr << d.verdict;
   EXPECT_TRUE(d.effects.empty());
   ASSERT_FALSE(d.measurement.empty());
@@ -730,14 +729,14 @@ void expect_slider_clock(const test::TempDir& dir, double knock) {
   // verdict says so).
   EXPECT_EQ(d.measurement.front().channel.rfind("block", 0), 0u) << d.measurement.front().channel;
   EXPECT_TRUE(d.measurement.front().delay_significant);
-  EXPECT_NEAR(d.measurement.front().delay, delay, 0.01);
+  EXPECT_NEAR(d.measurement.front().delay, kSliderDelay, 0.01);
   std::cout << fmt::format("measured: delay of {} = {:.4f} s for {}\n", d.measurement.front().channel,
-                           d.measurement.front().delay, delay);
+                           d.measurement.front().delay, kSliderDelay);
 }
 
 TEST(Diagnosis, MeasuresASlidersClockOffsetFromItsSlipOnsets) {
   test::TempDir dir;
-  expect_slider_clock(dir, 0);
+  expect_slider_clock(dir, late_slider(dir, 0));
 }
 
 // The same clock when the recording has a slip the model lacks, first of all (a knock of 3 mm
@@ -745,11 +744,11 @@ TEST(Diagnosis, MeasuresASlidersClockOffsetFromItsSlipOnsets) {
 // (case22 of the proof study, docs/diagnose.md study 21); matched by time they meet their own.
 TEST(Diagnosis, MeasuresASlidersClockOffsetPastASlipTheModelLacks) {
   test::TempDir dir;
-  const Recording r = late_slider(dir, 0.2, 0.03, 0.003);
+  const Recording r = late_slider(dir, 0.003);
   const diagnosis::Features f = diagnosis::event_features(r, r.nominal);
   ASSERT_TRUE(f.count("block.slip1.time"));  // the knock is a slip of the recording's, before the pulses
   EXPECT_LT(f.at("block.slip1.time").value, 0.2);
-  expect_slider_clock(dir, 0.003);
+  expect_slider_clock(dir, r);
 }
 
 TEST(Diagnosis, BadInputIsRefusedWithoutAVerdict) {
