@@ -1193,6 +1193,12 @@ class Diagnoser {
   std::vector<Features> ensemble_at(const Round& r, const Candidate& c, double u, int members);
   using EnsemblePoints = std::vector<std::pair<double, std::vector<Features>>>;  // (scaled value, its ensemble's runs)
   std::vector<std::pair<double, double>> ensemble_curve(const EnsemblePoints& at) const;
+  struct SettlePoints {
+    EnsemblePoints at;                              // the points settle ran, the model before first, then the fit
+    std::vector<std::pair<double, double>> curve;   // their ensemble chi2 (ensemble_curve), sorted by u
+    ProfileMinimum minimum;                         // the parabola's about the lowest before the minimum was run
+  };
+  SettlePoints settle_points(Round& r, std::size_t i);
   void settle(Round& r, std::size_t i);
   void accept(Round& r, std::size_t best, std::vector<std::string> alike);
   void finish();
@@ -1722,7 +1728,7 @@ std::vector<std::pair<double, double>> Diagnoser::ensemble_curve(const EnsembleP
 // the tower benchmark, with a slip's stop as a feature, one member's profile held the 10 mm
 // COM at 5.43 mm and the ensemble fell on to 8.14 mm, the bracket's end). 2 M members, not
 // M: the points differ by a few units of chi2, the Monte Carlo s.e. of M members' mean.
-void Diagnoser::settle(Round& r, std::size_t i) {
+Diagnoser::SettlePoints Diagnoser::settle_points(Round& r, std::size_t i) {
   const Candidate& c = candidates_[i];
   const int m = options_.ensemble;
   const double u0 = to_scaled(c, c.nominal), u = to_scaled(c, r.fits[i].value);
@@ -1733,26 +1739,36 @@ void Diagnoser::settle(Round& r, std::size_t i) {
     r.extended[i] = search_.run(more_members(applied(base_, c, r.fits[i].value), recordings_, m, 2 * m,
                                              options_.table_gain_sd),
                                 fmt::format("round {}: {} more members at {}", r.number, m, c.name));
-  EnsemblePoints at = {{u0, joined(ensemble_runs_, ensemble_more_)}, {u, joined(r.tested[i], r.extended[i])}};
+  SettlePoints p;
+  p.at = {{u0, joined(ensemble_runs_, ensemble_more_)}, {u, joined(r.tested[i], r.extended[i])}};
   const auto add = [&](double v) {  // whether v is new (its ensemble run)
     v = std::clamp(v, 0.0, 1.0);
-    const bool repeat = std::any_of(at.begin(), at.end(), [&](const auto& p) { return std::abs(p.first - v) < 1e-9; });
-    if (!repeat) at.push_back({v, ensemble_at(r, c, v, 2 * m)});
+    const bool repeat = std::any_of(p.at.begin(), p.at.end(), [&](const auto& q) { return std::abs(q.first - v) < 1e-9; });
+    if (!repeat) p.at.push_back({v, ensemble_at(r, c, v, 2 * m)});
     return !repeat;
   };
   add(u0 + (u - u0) * 0.5), add(u0 + (u - u0) * 1.5);
-  std::vector<std::pair<double, double>> curve = ensemble_curve(at);
+  p.curve = ensemble_curve(p.at);
   for (double t = 2; t <= kSettleReach; t += 0.5) {
-    const std::size_t outer = u > u0 ? curve.size() - 1 : 0;
-    if (lowest_point(curve) != outer || !add(u0 + (u - u0) * t)) break;
-    curve = ensemble_curve(at);
+    const std::size_t outer = u > u0 ? p.curve.size() - 1 : 0;
+    if (lowest_point(p.curve) != outer || !add(u0 + (u - u0) * t)) break;
+    p.curve = ensemble_curve(p.at);
   }
-  // The parabola's minimum is run too, and the value is the point that fits the members best
-  // on the scatter pooled over all of them, not the parabola's word alone: on a soft
-  // contact's log-scale profile (Diagnosis.NamesASofterContactNotANarrowerBase) its minimum
-  // moved the stiffness away from the truth.
-  const ProfileMinimum minimum = profile_minimum(curve, 3);
-  if (std::isfinite(minimum.u) && add(minimum.u)) curve = ensemble_curve(at);
+  p.minimum = profile_minimum(p.curve, 3);
+  if (std::isfinite(p.minimum.u) && add(p.minimum.u)) p.curve = ensemble_curve(p.at);
+  return p;
+}
+
+// The parabola's minimum is run too (settle_points), and the value is the point that fits the
+// members best on the scatter pooled over all of them, not the parabola's word alone: on a
+// soft contact's log-scale profile (Diagnosis.NamesASofterContactNotANarrowerBase) its minimum
+// moved the stiffness away from the truth.
+void Diagnoser::settle(Round& r, std::size_t i) {
+  const Candidate& c = candidates_[i];
+  const int m = options_.ensemble;
+  const double u = to_scaled(c, r.fits[i].value);
+  const SettlePoints points = settle_points(r, i);
+  const auto& [at, curve, minimum] = points;
   std::vector<std::string> words;
   for (const auto& [v, chi2] : curve) words.push_back(fmt::format("{:.1f} at {}", chi2, format_value(c, to_value(c, v))));
   d_.notes.push_back(fmt::format("round {}: {} on {} members (chi2): {}", r.number, c.name, 2 * m, fmt::join(words, ", ")));
