@@ -1193,12 +1193,16 @@ class Diagnoser {
   std::vector<Features> ensemble_at(const Round& r, const Candidate& c, double u, int members);
   using EnsemblePoints = std::vector<std::pair<double, std::vector<Features>>>;  // (scaled value, its ensemble's runs)
   std::vector<std::pair<double, double>> ensemble_curve(const EnsemblePoints& at) const;
+  const std::vector<Features>& current_more(const std::string& stage);
   struct SettlePoints {
+    Candidate candidate;                            // at its shape (the candidate's own when it has none)
     EnsemblePoints at;                              // the points settle ran, the model before first, then the fit
     std::vector<std::pair<double, double>> curve;   // their ensemble chi2 (ensemble_curve), sorted by u
     ProfileMinimum minimum;                         // the parabola's about the lowest before the minimum was run
   };
-  SettlePoints settle_points(Round& r, std::size_t i);
+  SettlePoints settle_points(const Round& r, const Candidate& c, double u, std::vector<Features> at_u);
+  std::vector<SettlePoints> settle_shapes(Round& r, std::size_t i);
+  std::pair<std::size_t, std::size_t> settled_point(Round& r, std::size_t i, const std::vector<SettlePoints>& shapes);
   void settle(Round& r, std::size_t i);
   void accept(Round& r, std::size_t best, std::vector<std::string> alike);
   void finish();
@@ -1637,12 +1641,9 @@ TestedEnsemble Diagnoser::on_ensemble(FittedCandidate& f, const std::string& sta
   const auto [first, n] = compare(f, ensemble_runs_, t.runs);
   if (!undecided(f, first, n, rule)) return t;
   const int m = options_.ensemble;
-  if (ensemble_more_.empty())
-    ensemble_more_ = search_.run(more_members(base_, recordings_, m, 2 * m, options_.table_gain_sd),
-                                 fmt::format("{}: {} more members of the current model", stage, m));
   t.extended = search_.run(more_members(model, recordings_, m, 2 * m, options_.table_gain_sd),
                            fmt::format("{}: {} more members at {}", stage, m, c.name));
-  const Drop second = compare(f, joined(ensemble_runs_, ensemble_more_), joined(t.runs, t.extended)).first;
+  const Drop second = compare(f, joined(ensemble_runs_, current_more(stage)), joined(t.runs, t.extended)).first;
   d_.notes.push_back(fmt::format("{}: {} undecided on {} members (chi2 {:.1f} +- {:.1f} lower); on {}: {:.1f} +- {:.1f}",
                                  stage, c.name, m, first.value, first.se, 2 * m, second.value, second.se));
   return t;
@@ -1718,6 +1719,15 @@ std::vector<std::pair<double, double>> Diagnoser::ensemble_curve(const EnsembleP
   return curve;
 }
 
+// The current model's members M + 1 to 2M, run the first time a second look needs them.
+const std::vector<Features>& Diagnoser::current_more(const std::string& stage) {
+  const int m = options_.ensemble;
+  if (ensemble_more_.empty())
+    ensemble_more_ = search_.run(more_members(base_, recordings_, m, 2 * m, options_.table_gain_sd),
+                                 fmt::format("{}: {} more members of the current model", stage, m));
+  return ensemble_more_;
+}
+
 // The value on the ensemble: the profile's minimum is one member's, whose jitter can hold it
 // off by more than its s.e. (case13 of the proof study: table pitch 0.033 for 0.02, twice).
 // The accepted candidate's ensemble chi2 at the model before (u0), at the fit u and at u0 +
@@ -1728,19 +1738,13 @@ std::vector<std::pair<double, double>> Diagnoser::ensemble_curve(const EnsembleP
 // the tower benchmark, with a slip's stop as a feature, one member's profile held the 10 mm
 // COM at 5.43 mm and the ensemble fell on to 8.14 mm, the bracket's end). 2 M members, not
 // M: the points differ by a few units of chi2, the Monte Carlo s.e. of M members' mean.
-Diagnoser::SettlePoints Diagnoser::settle_points(Round& r, std::size_t i) {
-  const Candidate& c = candidates_[i];
+Diagnoser::SettlePoints Diagnoser::settle_points(const Round& r, const Candidate& c, double u,
+                                                 std::vector<Features> at_u) {
   const int m = options_.ensemble;
-  const double u0 = to_scaled(c, c.nominal), u = to_scaled(c, r.fits[i].value);
-  if (ensemble_more_.empty())
-    ensemble_more_ = search_.run(more_members(base_, recordings_, m, 2 * m, options_.table_gain_sd),
-                                 fmt::format("round {}: {} more members of the current model", r.number, m));
-  if (!r.extended.count(i))
-    r.extended[i] = search_.run(more_members(applied(base_, c, r.fits[i].value), recordings_, m, 2 * m,
-                                             options_.table_gain_sd),
-                                fmt::format("round {}: {} more members at {}", r.number, m, c.name));
+  const double u0 = to_scaled(c, c.nominal);
   SettlePoints p;
-  p.at = {{u0, joined(ensemble_runs_, ensemble_more_)}, {u, joined(r.tested[i], r.extended[i])}};
+  p.candidate = c;
+  p.at = {{u0, joined(ensemble_runs_, current_more(fmt::format("round {}", r.number)))}, {u, std::move(at_u)}};
   const auto add = [&](double v) {  // whether v is new (its ensemble run)
     v = std::clamp(v, 0.0, 1.0);
     const bool repeat = std::any_of(p.at.begin(), p.at.end(), [&](const auto& q) { return std::abs(q.first - v) < 1e-9; });
@@ -1759,32 +1763,98 @@ Diagnoser::SettlePoints Diagnoser::settle_points(Round& r, std::size_t i) {
   return p;
 }
 
+// The settle's points at the candidate's shape, then at each other of its shapes (a law's
+// second parameter; none for most entries), each bracket about the same fit u. A shape moves
+// the value the law needs (a slower weakening needs a lower mu_k for the same friction at the
+// slip speeds of the record: case25 of the proof study fitted 0.70 at 5 s/m for 0.875 at 10),
+// so a value settled at one fixed shape is biased by the shape's error.
+std::vector<Diagnoser::SettlePoints> Diagnoser::settle_shapes(Round& r, std::size_t i) {
+  const Candidate& c = candidates_[i];
+  const int m = options_.ensemble;
+  const double u = to_scaled(c, r.fits[i].value);
+  if (!r.extended.count(i))
+    r.extended[i] = search_.run(more_members(applied(base_, c, r.fits[i].value), recordings_, m, 2 * m,
+                                             options_.table_gain_sd),
+                                fmt::format("round {}: {} more members at {}", r.number, m, c.name));
+  std::vector<SettlePoints> out = {settle_points(r, c, u, joined(r.tested[i], r.extended[i]))};
+  for (double shape : c.shapes) {
+    if (shape == c.shape) continue;
+    const Candidate other = reshaped(c, shape);
+    out.push_back(settle_points(r, other, u, ensemble_at(r, other, u, 2 * m)));
+  }
+  return out;
+}
+
+// The point (shape, index in its points) the settle takes: every shape's points on one pooled
+// scatter (the model before once), the lowest of the candidate's own shape unless another
+// shape's lowest fits better beyond the Monte Carlo bound and kIndistinguishable (member by
+// member, shared seeds). The others' lowest that fit alike go to the fit's alike_shapes: a
+// record of slips alone seldom tells a law's decay from its value (a slower weakening to a
+// lower mu_k fits as well as a faster one to a higher), and the verdict says so.
+std::pair<std::size_t, std::size_t> Diagnoser::settled_point(Round& r, std::size_t i,
+                                                             const std::vector<SettlePoints>& shapes) {
+  std::vector<std::vector<Features>> ensembles;            // every point once (the model before is each shape's first)
+  std::vector<std::pair<std::size_t, std::size_t>> where;  // (shape, point) of each
+  for (std::size_t s = 0; s < shapes.size(); ++s)
+    for (std::size_t k = s == 0 ? 0 : 1; k < shapes[s].at.size(); ++k)
+      ensembles.push_back(shapes[s].at[k].second), where.push_back({s, k});
+  const Target pooled = make_target(measured_, ensembles, search_, held_);
+  const std::size_t n = recordings_.size();
+  std::vector<double> chi2;
+  for (const std::vector<Features>& runs : ensembles) chi2.push_back(pooled.ensemble_chi2(members_of(runs, n), false));
+  std::vector<std::size_t> lowest(shapes.size(), 0);  // per shape: its lowest point in `ensembles`
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    const Candidate& c = shapes[s].candidate;
+    std::vector<std::pair<double, double>> curve;
+    for (std::size_t j = 0; j < where.size(); ++j) {
+      if (where[j].first != s && where[j].second != 0) continue;
+      curve.push_back({shapes[s].at[where[j].second].first, chi2[j]});
+      if (where[j].first == s && chi2[j] < chi2[lowest[s]]) lowest[s] = j;
+    }
+    std::sort(curve.begin(), curve.end());
+    std::vector<std::string> words;
+    for (const auto& [v, x] : curve) words.push_back(fmt::format("{:.1f} at {}", x, format_value(c, to_value(c, v))));
+    d_.notes.push_back(fmt::format("round {}: {}{} on {} members (chi2): {}", r.number, c.name, format_shape(c),
+                                   2 * options_.ensemble, fmt::join(words, ", ")));
+  }
+  const auto drop = [&](std::size_t from, std::size_t to) {  // > 0: shape `to` at its lowest fits better
+    return ensemble_drop(pooled, members_of(ensembles[lowest[from]], n), pooled, members_of(ensembles[lowest[to]], n), false);
+  };
+  std::size_t chosen = 0;
+  for (std::size_t s = 1; s < shapes.size(); ++s)
+    if (exceeds(drop(chosen, s), kIndistinguishable)) chosen = s;
+  r.fits[i].alike_shapes.clear();
+  for (std::size_t s = 0; s < shapes.size(); ++s)
+    if (s != chosen && !exceeds(drop(s, chosen), kIndistinguishable))
+      r.fits[i].alike_shapes.push_back(
+          {shapes[s].candidate.shape, to_value(shapes[s].candidate, shapes[s].at[where[lowest[s]].second].first)});
+  return where[lowest[chosen]];
+}
+
 // The parabola's minimum is run too (settle_points), and the value is the point that fits the
 // members best on the scatter pooled over all of them, not the parabola's word alone: on a
 // soft contact's log-scale profile (Diagnosis.NamesASofterContactNotANarrowerBase) its minimum
 // moved the stiffness away from the truth.
 void Diagnoser::settle(Round& r, std::size_t i) {
-  const Candidate& c = candidates_[i];
   const int m = options_.ensemble;
-  const double u = to_scaled(c, r.fits[i].value);
-  const SettlePoints points = settle_points(r, i);
-  const auto& [at, curve, minimum] = points;
-  std::vector<std::string> words;
-  for (const auto& [v, chi2] : curve) words.push_back(fmt::format("{:.1f} at {}", chi2, format_value(c, to_value(c, v))));
-  d_.notes.push_back(fmt::format("round {}: {} on {} members (chi2): {}", r.number, c.name, 2 * m, fmt::join(words, ", ")));
-  const double best = curve[lowest_point(curve)].first;
-  if (std::abs(best - u) < 1e-9) return;
-  const std::vector<Features>& runs =
-      std::find_if(at.begin(), at.end(), [&](const auto& p) { return std::abs(p.first - best) < 1e-12; })->second;
+  const double u = to_scaled(candidates_[i], r.fits[i].value);
+  const std::vector<SettlePoints> shapes = settle_shapes(r, i);
+  const auto [s, k] = settled_point(r, i, shapes);
+  const SettlePoints& p = shapes[s];
+  const Candidate& c = p.candidate;
+  if (s == 0 && std::abs(p.at[k].first - u) < 1e-9) return;
+  const std::vector<Features>& runs = p.at[k].second;
   FittedCandidate there = r.fits[i];
-  there.value = to_value(c, best);
-  compare(there, at.front().second, runs);
-  if (!passes(there, true)) return;
-  if (std::isfinite(minimum.sd)) there.standard_error = minimum.sd * birge_ratio(there.chi2, target_.count()) * scaled_unit(c);
+  there.candidate = c, there.value = to_value(c, p.at[k].first);
+  compare(there, shapes.front().at.front().second, runs);
+  if (!passes(there, true)) return r.fits[i].alike_shapes.clear();  // compared with a shape not taken
+  if (std::isfinite(p.minimum.sd)) there.standard_error = p.minimum.sd * birge_ratio(there.chi2, target_.count()) * scaled_unit(c);
   widen_to_ensemble(there, target_.count());
-  d_.notes.push_back(fmt::format("round {}: {} on the ensemble: {} (profile {})", r.number, c.name,
-                                 format_value(c, there.value), format_value(c, r.fits[i].value)));
+  d_.notes.push_back(fmt::format("round {}: {} on the ensemble: {}{} (profile {}{})", r.number, c.name,
+                                 format_value(c, there.value), format_shape(c), format_value(c, r.fits[i].value),
+                                 format_shape(candidates_[i])));
   r.fits[i] = there;
+  candidates_[i] = c;
   const auto split = runs.begin() + static_cast<std::ptrdiff_t>(recordings_.size() * (1 + m));
   r.tested[i].assign(runs.begin(), split);  // as on_ensemble leaves them: M members, then M more
   r.extended[i].assign(split, runs.end());

@@ -59,7 +59,15 @@ struct Candidate {
   double profile_scale = 1;  // the quick profile's steps (0.01 x 4^k of the range) times this
   std::vector<double> ladder;  // when not empty, the quick profile's offsets from the nominal instead
                                // (scaled units, signed); cleared once the candidate is accepted
+  // A second parameter of the law that no profile fits (velocity weakening's decay): the settle
+  // runs the value's ensemble points at each of `shapes` and keeps the shape that fits best.
+  std::string shape_name, shape_unit;  // "friction_decay", "s/m"; empty: the entry has none
+  double shape = 0;                    // its value in `apply`
+  std::vector<double> shapes;          // the values the settle tries (shape among them)
+  std::function<void(nlohmann::json&, double, double)> apply_shaped;  // sets (value, shape) in a document
 };
+// c with its second parameter at `shape` (apply set from apply_shaped).
+Candidate reshaped(const Candidate& c, double shape);
 // a and b are of similar signature: b's entry is listed as similar to a's, and two body
 // candidates are on the same body.
 bool of_similar_signature(const Candidate& a, const Candidate& b);
@@ -169,6 +177,8 @@ struct FittedCandidate {
   double held_out_delta = 0;  // improvement on the held-out features, value fitted without them
   int evaluations = 0;
   std::vector<std::pair<double, double>> profile;  // (value, chi2 + prior) of each profile point, by value
+  std::vector<std::pair<double, double>> alike_shapes;  // (shape, value there): the candidate's other shapes whose
+                                                        // settled value fits alike on the ensemble (Candidate::shapes)
 };
 
 struct Effect {               // an accepted candidate

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "freestand/input_error.h"
@@ -17,6 +18,11 @@ namespace freestand::diagnosis {
 using nlohmann::json;
 
 namespace {
+
+// The decays (s/m) the settle tries for velocity weakening: characteristic slip speeds 1/decay
+// of 0.8, 0.2 and 0.05 m/s, over the slip speeds of shake-table sliding (cm/s to m/s). The
+// profile starts at the middle one.
+constexpr std::array<double, 3> kDecays = {1.25, 5.0, 20.0};
 
 // `similar`: entries whose effects on the event features are much alike in rocking physics (a
 // softer contact and an inset edge both move the pivot inward; an off-axis centre of mass, a
@@ -73,6 +79,13 @@ const CatalogueEntry* catalogue_entry(const std::string& name) {
 
 // Two body candidates are alike only on the same body: a stack's tower and pedestal answer to
 // different features, and each meeting costs a test.
+Candidate reshaped(const Candidate& c, double shape) {
+  Candidate out = c;
+  out.shape = shape;
+  out.apply = [law = c.apply_shaped, shape](json& d, double v) { law(d, v, shape); };
+  return out;
+}
+
 bool of_similar_signature(const Candidate& a, const Candidate& b) {
   const CatalogueEntry* entry = catalogue_entry(a.entry);
   if (!entry || !std::count(entry->similar.begin(), entry->similar.end(), b.entry)) return false;
@@ -185,18 +198,21 @@ void interface_candidates(const json& document, const Scene& scene, const Record
       g["mu_s"] = v, g["mu_k"] = ratio * v;
     };
     out.push_back(mu);
+    // The friction laws, mu(v) = mu_k + (mu_s - mu_k) exp(-decay |v|): a step at the onset of
+    // slip (decay 0), or a gradual weakening whose decay the settle chooses from kDecays.
     for (const auto& [entry, decay] : {std::pair<const char*, double>{"static_kinetic_friction", 0.0},
-                                       std::pair<const char*, double>{"velocity_weakening", 5.0}}) {
+                                       std::pair<const char*, double>{"velocity_weakening", kDecays[1]}}) {
       const bool stat = decay > 0 ? stated.contains("friction_decay") : stated.contains("mu_k");
       Candidate c = make(entry, "mu_k / mu_s", 0.3, 1.0, f.contact.mu_k / mu_s, false, stat);
       c.at_boundary = c.nominal >= 1.0;  // mu_k cannot exceed mu_s: equal friction is the bound
-      c.apply = [lower, upper, mu_s, decay](json& d, double v) {
+      c.apply_shaped = [lower, upper, mu_s](json& d, double v, double decay) {
         json& g = interface_entry(d, lower, upper);
         const double s = g.value("mu_s", g.value("mu", mu_s));
         g.erase("mu");
         g["mu_s"] = s, g["mu_k"] = v * s, g["friction_decay"] = decay;
       };
-      out.push_back(c);
+      if (decay > 0) c.shape_name = "friction_decay", c.shape_unit = "s/m", c.shapes = {kDecays.begin(), kDecays.end()};
+      out.push_back(reshaped(c, decay));
     }
   }
 }

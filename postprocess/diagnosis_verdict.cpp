@@ -13,6 +13,10 @@ std::string format_value(const Candidate& c, double v) {
   return c.unit.empty() ? fmt::format("{:.3g}", v) : fmt::format("{:.3g} {}", v, c.unit);
 }
 
+std::string format_shape(const Candidate& c) {
+  return c.shape_name.empty() ? "" : fmt::format(" ({} {:.3g} {})", c.shape_name, c.shape, c.shape_unit);
+}
+
 namespace {
 
 // The candidates of a similar catalogue entry that also improved an accepted effect's profile.
@@ -32,6 +36,15 @@ std::string event_words(const Mismatch& m) {
   return fmt::format("at t = {:.2f} s ({})", m.time, m.feature.substr(m.feature.find('.') + 1));
 }
 
+// The other shapes of an effect's law that fit alike, each at its own value.
+std::string alike_shape_words(const FittedCandidate& f) {
+  if (f.alike_shapes.empty()) return "";
+  std::vector<std::string> parts;
+  for (const auto& [shape, value] : f.alike_shapes)
+    parts.push_back(fmt::format("{:.3g} {} with {}", shape, f.candidate.shape_unit, format_value(f.candidate, value)));
+  return fmt::format(" Its {} is not resolved: {} fit as well.", f.candidate.shape_name, fmt::join(parts, ", "));
+}
+
 // One accepted effect: what, the value and its uncertainty, the misfit before and after, and
 // what fits alike.
 std::string effect_words(const Effect& e) {
@@ -39,13 +52,15 @@ std::string effect_words(const Effect& e) {
   const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
                           : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
                                                   : fmt::format("+- {:.2g}", f.standard_error);
-  return fmt::format("{}: {} ({} = {}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} "
-                     "candidates, held-out improvement {:.1f}.{}{}{}\n",
+  return fmt::format("{}: {} ({} = {}{}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} "
+                     "candidates, held-out improvement {:.1f}.{}{}{}{}\n",
                      e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
                                                                                               : "Missing physics",
-                     f.candidate.description, f.candidate.name, format_value(f.candidate, f.value), err,
+                     f.candidate.description, f.candidate.name, format_value(f.candidate, f.value),
+                     format_shape(f.candidate), err,
                      format_value(f.candidate, f.candidate.nominal), f.chi2 + f.delta, f.chi2, f.delta_se, f.p_value,
-                     e.candidates_tried, f.held_out_delta, e.far_off ? " FAR from the stated value: check the nominal." : "",
+                     e.candidates_tried, f.held_out_delta, alike_shape_words(f),
+                     e.far_off ? " FAR from the stated value: check the nominal." : "",
                      e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")),
                      similar_words(e));
 }
@@ -124,7 +139,7 @@ std::string verdict_text(const Diagnosis& d) {
 
 json diagnosis_json(const Diagnosis& d) {
   auto fitted = [](const FittedCandidate& f) {
-    return json{{"candidate", f.candidate.name}, {"catalogue", f.candidate.entry}, {"where", f.candidate.where},
+    json j{{"candidate", f.candidate.name}, {"catalogue", f.candidate.entry}, {"where", f.candidate.where},
                 {"description", f.candidate.description}, {"unit", f.candidate.unit}, {"value", f.value},
                 {"standard_error", std::isfinite(f.standard_error) ? json(f.standard_error) : json(nullptr)},
                 {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
@@ -132,6 +147,11 @@ json diagnosis_json(const Diagnosis& d) {
                 {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
                 {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations},
                 {"profile", f.profile}};
+    if (!f.candidate.shape_name.empty())
+      j["shape"] = {{"name", f.candidate.shape_name}, {"value", f.candidate.shape}, {"unit", f.candidate.shape_unit},
+                    {"tried", f.candidate.shapes}, {"alike", json::array()}};
+    for (const auto& [shape, value] : f.alike_shapes) j["shape"]["alike"].push_back({{"shape", shape}, {"value", value}});
+    return j;
   };
   auto mismatch = [](const Mismatch& m) {
     return json{{"feature", m.feature}, {"body", m.body}, {"mode", m.mode}, {"time", m.time},
