@@ -1202,6 +1202,15 @@ class Diagnoser {
   };
   SettlePoints settle_points(const Round& r, const Candidate& c, double u, std::vector<Features> at_u);
   std::vector<SettlePoints> settle_shapes(Round& r, std::size_t i);
+  struct ScoredShapes {  // every settle point of every shape on one pooled scatter
+    std::vector<std::vector<Features>> ensembles;            // each point once (the model before is each shape's first)
+    std::vector<std::pair<std::size_t, std::size_t>> where;  // (shape, point) of each
+    std::vector<double> chi2;                                // its ensemble chi2 (fit set) against `pooled`
+    std::vector<std::size_t> lowest;                         // per shape: its lowest point, an index in `ensembles`
+    Target pooled;                                           // the recording against all of them
+  };
+  ScoredShapes scored_shapes(const std::vector<SettlePoints>& shapes) const;
+  void note_shapes(const Round& r, const std::vector<SettlePoints>& shapes, const ScoredShapes& scored);
   std::pair<std::size_t, std::size_t> settled_point(Round& r, std::size_t i, const std::vector<SettlePoints>& shapes);
   void settle(Round& r, std::size_t i);
   void accept(Round& r, std::size_t best, std::vector<std::string> alike);
@@ -1785,40 +1794,52 @@ std::vector<Diagnoser::SettlePoints> Diagnoser::settle_shapes(Round& r, std::siz
   return out;
 }
 
-// The point (shape, index in its points) the settle takes: every shape's points on one pooled
-// scatter (the model before once), the lowest of the candidate's own shape unless another
-// shape's lowest fits better beyond the Monte Carlo bound and kIndistinguishable (member by
-// member, shared seeds). The others' lowest that fit alike go to the fit's alike_shapes: a
-// record of slips alone seldom tells a law's decay from its value (a slower weakening to a
-// lower mu_k fits as well as a faster one to a higher), and the verdict says so.
-std::pair<std::size_t, std::size_t> Diagnoser::settled_point(Round& r, std::size_t i,
-                                                             const std::vector<SettlePoints>& shapes) {
-  std::vector<std::vector<Features>> ensembles;            // every point once (the model before is each shape's first)
-  std::vector<std::pair<std::size_t, std::size_t>> where;  // (shape, point) of each
+// Every settle point of every shape against one scatter pooled over all of them.
+Diagnoser::ScoredShapes Diagnoser::scored_shapes(const std::vector<SettlePoints>& shapes) const {
+  ScoredShapes out;
   for (std::size_t s = 0; s < shapes.size(); ++s)
     for (std::size_t k = s == 0 ? 0 : 1; k < shapes[s].at.size(); ++k)
-      ensembles.push_back(shapes[s].at[k].second), where.push_back({s, k});
-  const Target pooled = make_target(measured_, ensembles, search_, held_);
-  const std::size_t n = recordings_.size();
-  std::vector<double> chi2;
-  for (const std::vector<Features>& runs : ensembles) chi2.push_back(pooled.ensemble_chi2(members_of(runs, n), false));
-  std::vector<std::size_t> lowest(shapes.size(), 0);  // per shape: its lowest point in `ensembles`
+      out.ensembles.push_back(shapes[s].at[k].second), out.where.push_back({s, k});
+  out.pooled = make_target(measured_, out.ensembles, search_, held_);
+  out.lowest.assign(shapes.size(), 0);
+  for (std::size_t j = 0; j < out.ensembles.size(); ++j) {
+    out.chi2.push_back(out.pooled.ensemble_chi2(members_of(out.ensembles[j], recordings_.size()), false));
+    const std::size_t s = out.where[j].first;
+    if (out.chi2[j] < out.chi2[out.lowest[s]] || out.where[out.lowest[s]].first != s) out.lowest[s] = j;
+  }
+  return out;
+}
+
+// A note per shape: the chi2 of its points (the model before among them), by value.
+void Diagnoser::note_shapes(const Round& r, const std::vector<SettlePoints>& shapes, const ScoredShapes& scored) {
   for (std::size_t s = 0; s < shapes.size(); ++s) {
     const Candidate& c = shapes[s].candidate;
     std::vector<std::pair<double, double>> curve;
-    for (std::size_t j = 0; j < where.size(); ++j) {
-      if (where[j].first != s && where[j].second != 0) continue;
-      curve.push_back({shapes[s].at[where[j].second].first, chi2[j]});
-      if (where[j].first == s && chi2[j] < chi2[lowest[s]]) lowest[s] = j;
-    }
+    for (std::size_t j = 0; j < scored.where.size(); ++j)
+      if (scored.where[j].first == s || scored.where[j].second == 0)
+        curve.push_back({shapes[s].at[scored.where[j].second].first, scored.chi2[j]});
     std::sort(curve.begin(), curve.end());
     std::vector<std::string> words;
     for (const auto& [v, x] : curve) words.push_back(fmt::format("{:.1f} at {}", x, format_value(c, to_value(c, v))));
     d_.notes.push_back(fmt::format("round {}: {}{} on {} members (chi2): {}", r.number, c.name, format_shape(c),
                                    2 * options_.ensemble, fmt::join(words, ", ")));
   }
+}
+
+// The point (shape, index in its points) the settle takes: the lowest of the candidate's own
+// shape unless another shape's lowest fits better beyond the Monte Carlo bound and
+// kIndistinguishable (member by member, shared seeds). The others' lowest that fit alike go to
+// the fit's alike_shapes: a record of slips alone seldom tells a law's decay from its value (a
+// slower weakening to a lower mu_k fits as well as a faster one to a higher), and the verdict
+// says so.
+std::pair<std::size_t, std::size_t> Diagnoser::settled_point(Round& r, std::size_t i,
+                                                             const std::vector<SettlePoints>& shapes) {
+  const ScoredShapes scored = scored_shapes(shapes);
+  note_shapes(r, shapes, scored);
+  const std::size_t n = recordings_.size();
   const auto drop = [&](std::size_t from, std::size_t to) {  // > 0: shape `to` at its lowest fits better
-    return ensemble_drop(pooled, members_of(ensembles[lowest[from]], n), pooled, members_of(ensembles[lowest[to]], n), false);
+    return ensemble_drop(scored.pooled, members_of(scored.ensembles[scored.lowest[from]], n), scored.pooled,
+                         members_of(scored.ensembles[scored.lowest[to]], n), false);
   };
   std::size_t chosen = 0;
   for (std::size_t s = 1; s < shapes.size(); ++s)
@@ -1826,9 +1847,9 @@ std::pair<std::size_t, std::size_t> Diagnoser::settled_point(Round& r, std::size
   r.fits[i].alike_shapes.clear();
   for (std::size_t s = 0; s < shapes.size(); ++s)
     if (s != chosen && !exceeds(drop(s, chosen), kIndistinguishable))
-      r.fits[i].alike_shapes.push_back(
-          {shapes[s].candidate.shape, to_value(shapes[s].candidate, shapes[s].at[where[lowest[s]].second].first)});
-  return where[lowest[chosen]];
+      r.fits[i].alike_shapes.push_back({shapes[s].candidate.shape,
+                                        to_value(shapes[s].candidate, shapes[s].at[scored.where[scored.lowest[s]].second].first)});
+  return scored.where[scored.lowest[chosen]];
 }
 
 // The parabola's minimum is run too (settle_points), and the value is the point that fits the
