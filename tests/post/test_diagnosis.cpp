@@ -716,14 +716,20 @@ Recording late_slider(const test::TempDir& dir, double knock) {
   return r;
 }
 
-// The slider's clock delay, measured from its slip onsets, and no physics named.
-void expect_slider_clock(const test::TempDir& dir, const Recording& recording) {
+// A slider's recording diagnosed against the model with its stated friction, one round.
+diagnosis::Diagnosis diagnose_slider(const test::TempDir& dir, const Recording& recording) {
   diagnosis::Options o = fast_options(dir);
   o.max_effects = 1;
   json scenario = model(0.3);
   scenario["contact"]["mu"] = kSliderMu;
   const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {recording}, o);
   std::cerr << d.verdict;
+  return d;
+}
+
+// The slider's clock delay, measured from its slip onsets, and no physics named.
+void expect_slider_clock(const test::TempDir& dir, const Recording& recording) {
+  const diagnosis::Diagnosis d = diagnose_slider(dir, recording);
   EXPECT_TRUE(d.effects.empty());
   ASSERT_FALSE(d.measurement.empty());
   // The body's clock or slide_x's alone: slide_y stays at zero, so the two fit alike (and the
@@ -773,12 +779,7 @@ TEST(Diagnosis, NamesAndRecoversVelocityWeakening) {
     if (c.name == "table_ax" || c.name == "block.slide_x" || c.name == "block.slide_y") kept.push_back(c);
   r.channels = kept;
   r.path = "weakening_slider";
-  diagnosis::Options o = fast_options(dir);
-  o.max_effects = 1;
-  json scenario = model(0.3);
-  scenario["contact"]["mu"] = kSliderMu;
-  const diagnosis::Diagnosis d = diagnosis::diagnose(scenario, {r}, o);
-  std::cerr << d.verdict;
+  const diagnosis::Diagnosis d = diagnose_slider(dir, r);
   ASSERT_FALSE(d.effects.empty());
   const diagnosis::FittedCandidate& fit = d.effects.front().fit;
   EXPECT_EQ(fit.candidate.entry, "velocity_weakening");
