@@ -60,7 +60,8 @@ struct Candidate {
   std::vector<double> ladder;  // when not empty, the quick profile's offsets from the nominal instead
                                // (scaled units, signed); cleared once the candidate is accepted
   // A second parameter of the law that no profile fits (velocity weakening's decay): the settle
-  // runs the value's ensemble points at each of `shapes` and keeps the shape that fits best.
+  // runs the value's ensemble points at each of `shapes`; another shape replaces it only when it
+  // fits better beyond the Monte Carlo bound (Diagnoser::settled_point), else fits alike.
   std::string shape_name, shape_unit;  // "friction_decay", "s/m"; empty: the entry has none
   double shape = 0;                    // its value in `apply`
   std::vector<double> shapes;          // the values the settle tries (shape among them)
