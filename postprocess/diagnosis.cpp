@@ -1591,6 +1591,7 @@ std::pair<Drop, int> Diagnoser::compare(FittedCandidate& f, const std::vector<Fe
   const Drop drop = ensemble_drop(pooled, before, pooled, at, std::nullopt);
   score(f, drop, pooled.count());
   f.chi2 = pooled.ensemble_chi2(at);
+  f.members = static_cast<int>(at.size());
   f.held_out_delta = held_available_ ? ensemble_drop(pooled, before, pooled, at, true).value : 0.0;
   return {drop, pooled.count()};
 }
@@ -1666,6 +1667,7 @@ void Diagnoser::test_sensor(Round& r, std::size_t i) {
   const std::vector<Features> members = members_of(ensemble_runs_, recordings_.size());
   score(f, ensemble_drop(target_, members, at, members, std::nullopt), target_.count());  // every feature, as compare
   f.chi2 = at.ensemble_chi2(members);
+  f.members = static_cast<int>(members.size());
   f.held_out_delta = held_available_ ? ensemble_drop(target_, members, at, members, true).value : 0.0;
 }
 

@@ -45,6 +45,13 @@ std::string alike_shape_words(const FittedCandidate& f) {
   return fmt::format(" Its {} is not resolved: {} fit as well.", f.candidate.shape_name, fmt::join(parts, ", "));
 }
 
+// The members a test's misfits are over: the chi2 of a model far off in a feature grows with
+// them (the predictive z's tails narrow as its scatter's dof grow), so a test on 2M members can
+// read a larger misfit of the model as given than its M-member ensemble alone does.
+std::string members_words(const FittedCandidate& f) {
+  return f.members > 0 ? fmt::format(" on {} members of each model", f.members) : "";
+}
+
 // One accepted effect: what, the value and its uncertainty, the misfit before and after, and
 // what fits alike.
 std::string effect_words(const Effect& e) {
@@ -52,14 +59,14 @@ std::string effect_words(const Effect& e) {
   const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
                           : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
                                                   : fmt::format("+- {:.2g}", f.standard_error);
-  return fmt::format("{}: {} ({} = {}{}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}), p = {:.2g} after {} "
-                     "candidates, held-out improvement {:.1f}.{}{}{}{}\n",
+  return fmt::format("{}: {} ({} = {}{}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}){}, p = {:.2g} "
+                     "after {} candidates, held-out improvement {:.1f}.{}{}{}{}\n",
                      e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
                                                                                               : "Missing physics",
                      f.candidate.description, f.candidate.name, format_value(f.candidate, f.value),
                      format_shape(f.candidate), err,
-                     format_value(f.candidate, f.candidate.nominal), f.chi2 + f.delta, f.chi2, f.delta_se, f.p_value,
-                     e.candidates_tried, f.held_out_delta, alike_shape_words(f),
+                     format_value(f.candidate, f.candidate.nominal), f.chi2 + f.delta, f.chi2, f.delta_se, members_words(f),
+                     f.p_value, e.candidates_tried, f.held_out_delta, alike_shape_words(f),
                      e.far_off ? " FAR from the stated value: check the nominal." : "",
                      e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")),
                      similar_words(e));
@@ -77,11 +84,11 @@ std::string hypothesis_words(const HypothesisTest& h, std::size_t number) {
   for (const StatedValue& s : h.stated)
     values.push_back(h.stated.size() == 1 ? fmt::format("{} = {}", s.candidate, format_value(f.candidate, s.value))
                                           : fmt::format("{} = {:.3g}", s.candidate, s.value));
-  std::string v = fmt::format("Hypothesis {}: {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}) against the model as "
-                              "given, p = {:.2g}, dBIC {:.1f}, held-out improvement {:.1f}.",
+  std::string v = fmt::format("Hypothesis {}: {} ({}): {}. Misfit {:.1f} -> {:.1f} (+- {:.1f}){} against the model "
+                              "as given, p = {:.2g}, dBIC {:.1f}, held-out improvement {:.1f}.",
                               number, fmt::join(values, ", "), f.candidate.description,
                               h.supported ? "supported" : "not supported", f.chi2 + f.delta, f.chi2, f.delta_se,
-                              f.p_value, f.delta_bic, f.held_out_delta);
+                              members_words(f), f.p_value, f.delta_bic, f.held_out_delta);
   if (!h.against_improved.empty())
     v += fmt::format(" Against the improved model it fits {} ({}).", h.against_improved,
                      difference_words(h.improved_delta, h.improved_delta_se));
@@ -144,7 +151,7 @@ json diagnosis_json(const Diagnosis& d) {
                 {"standard_error", std::isfinite(f.standard_error) ? json(f.standard_error) : json(nullptr)},
                 {"standard_error_of_log", f.candidate.log_scale}, {"nominal", f.candidate.nominal},
                 {"range", {f.candidate.lower, f.candidate.upper}}, {"stated", f.candidate.stated},
-                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
+                {"chi2", f.chi2}, {"delta_chi2", f.delta}, {"delta_chi2_se", f.delta_se}, {"members", f.members}, {"p_value", f.p_value}, {"delta_bic", f.delta_bic},
                 {"held_out_delta_chi2", f.held_out_delta}, {"evaluations", f.evaluations},
                 {"profile", f.profile}};
     if (!f.candidate.shape_name.empty())

@@ -265,6 +265,11 @@ TEST(Diagnosis, NamesAndRecoversEdgeInset) {
   EXPECT_NEAR(d.effects.front().fit.value, 0.015, 0.003);
   expect_standard_error_covers(d.effects.front().fit, 0.015);
   EXPECT_NEAR(d.improved["bodies"][0]["base"]["edge_inset"].get<double>(), d.effects.front().fit.value, 1e-12);
+  // The misfits it gives are over the test's members (M, or 2M once undecided or settled), and
+  // the verdict says so: a model far off reads a larger misfit on more members.
+  const int members = d.effects.front().fit.members;
+  EXPECT_TRUE(members == o.ensemble || members == 2 * o.ensemble) << members;
+  EXPECT_NE(d.verdict.find(fmt::format("on {} members of each model", members)), std::string::npos);
   // A softer contact also moves the pivot inward: the verdict says it helped too (its profile
   // dropped 66.8 against the inset's more, measured), in words and in the JSON.
   const auto& similar = d.effects.front().similar;
