@@ -99,19 +99,25 @@ std::string profile_figure(const Effect& e) {
   return svg::render(plot);
 }
 
+// The ensemble members of each model a drop is over ("profile": the quick profile's runs).
+TableCell members_cell(const FittedCandidate& f) {
+  return f.members > 0 ? number_cell(f.members) : text_cell("profile");
+}
+
 Table candidate_table(const Diagnosis& d, std::size_t round) {
   Table t;
   t.caption = fmt::format("Round {}: every candidate's 1-D profile fit (one tested on its ensemble: the drop over every "
                           "feature, held-out part apart; one only profiled: its profile's drop, on the fit window when "
                           "there is one, and no held-out figure)", round + 1);
-  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "p", "delta BIC", "held-out delta chi2"};
+  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "members", "p", "delta BIC",
+              "held-out delta chi2"};
   std::set<std::string> accepted;
   for (const Effect& e : d.effects) accepted.insert(e.fit.candidate.name);
   for (const FittedCandidate& f : d.rounds[round]) {
     const CellMark mark = accepted.count(f.candidate.name) ? CellMark::good : CellMark::none;
     t.rows.push_back({text_cell(f.candidate.name, mark), number_cell(f.value), number_cell(f.candidate.nominal),
-                      number_cell(f.delta), number_cell(f.delta_se), number_cell(f.p_value, 2), number_cell(f.delta_bic),
-                      number_cell(f.held_out_delta)});
+                      number_cell(f.delta), number_cell(f.delta_se), members_cell(f), number_cell(f.p_value, 2),
+                      number_cell(f.delta_bic), number_cell(f.held_out_delta)});
   }
   return t;
 }
@@ -119,13 +125,13 @@ Table candidate_table(const Diagnosis& d, std::size_t round) {
 Table hypothesis_table(const Diagnosis& d) {
   Table t;
   t.caption = "Hypotheses (--hypothesis): the model as given with the stated value, on its own ensemble";
-  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "p", "delta BIC",
-              "held-out delta chi2", "against the improved model"};
+  t.header = {"candidate", "value", "nominal", "delta chi2", "its Monte Carlo s.e.", "members", "p",
+              "delta BIC", "held-out delta chi2", "against the improved model"};
   for (const HypothesisTest& h : d.hypotheses) {
     const FittedCandidate& f = h.fit;
     t.rows.push_back({text_cell(f.candidate.name, h.supported ? CellMark::good : CellMark::none), number_cell(f.value),
                       number_cell(f.candidate.nominal), number_cell(f.delta), number_cell(f.delta_se),
-                      number_cell(f.p_value, 2), number_cell(f.delta_bic), number_cell(f.held_out_delta),
+                      members_cell(f), number_cell(f.p_value, 2), number_cell(f.delta_bic), number_cell(f.held_out_delta),
                       text_cell(h.against_improved)});
   }
   return t;
