@@ -101,7 +101,7 @@ std::string profile_figure(const Effect& e) {
 
 // The ensemble members of each model a drop is over ("profile": the quick profile's runs).
 TableCell members_cell(const FittedCandidate& f) {
-  return f.members > 0 ? number_cell(f.members) : text_cell("profile");
+  return text_cell(f.members > 0 ? fmt::format("{}", f.members) : "profile");
 }
 
 Table candidate_table(const Diagnosis& d, std::size_t round) {
