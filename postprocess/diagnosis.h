@@ -173,7 +173,7 @@ struct FittedCandidate {
   double chi2 = 0;            // -2 log L at the value (features of the fit set)
   double delta = 0;           // chi2 of the model before - chi2 here
   double delta_se = 0;        // Monte Carlo s.e. of delta (jackknife over ensemble members; 0: profile only)
-  int members = 0;            // ensemble members of each model that chi2 and delta are over (0: one run's profile)
+  int members = 0;            // ensemble members of each model that chi2 and delta are over (0: only profiled)
   double p_value = 1;         // LRT at delta - 2 delta_se, boundary-corrected
   double delta_bic = 0;       // delta - 2 delta_se - ln(n): > 0 favours the candidate
   double held_out_delta = 0;  // improvement on the held-out features, value fitted without them
