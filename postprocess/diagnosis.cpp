@@ -416,27 +416,34 @@ void shift_back(const Recording& r, RecordingChannel& channel, double delay) {
 
 // One delay of every channel of a body against the table's (the body's own acquisition system,
 // a camera or logger on another clock) as a candidate for each body with two channels or
-// more. Offered whether or not a channel's delay is suspected: that check correlates with the
-// nominal run before the two diverge, and a chaotic body, or a delay that is itself the
-// divergence, leaves it too little (case15 of the proof study: every tower channel 80 ms late,
-// none suspected). It runs no simulation.
+// more, and with two such bodies or more one delay of all of them (the specimen's system, one
+// camera or logger for every body, on another clock than the table controller's: the usual
+// case in a lab, and the evidence of every body pooled). Offered whether or not a channel's
+// delay is suspected: that check correlates with the nominal run before the two diverge, and a
+// chaotic body, or a delay that is itself the divergence, leaves it too little (case15 of the
+// proof study: every body channel 80 ms late, none suspected). It runs no simulation.
 std::vector<Candidate> clock_candidates(const Recording& recording, std::size_t index) {
   std::map<std::string, int> channels;  // body -> its channels in the recording
   for (const RecordingChannel& c : recording.channels)
     if (c.name.find('.') != std::string::npos) ++channels[c.name.substr(0, c.name.find('.'))];
+  std::vector<std::string> clocked;  // bodies with two channels or more
+  for (const auto& [body, count] : channels)
+    if (count >= 2) clocked.push_back(body);
   std::vector<Candidate> out;
-  for (const auto& [body, count] : channels) {
-    if (count < 2) continue;
+  const auto clock = [&](const std::vector<std::string>& bodies, const std::string& where, const std::string& whose) {
     Candidate c;
-    c.entry = "sensor_delay", c.where = body, c.name = fmt::format("sensor_delay[{}.*]", body), c.unit = "s";
-    c.description = fmt::format("every sensor of {} lags the table's (another clock; a delay in the recording, not physics)", body);
+    c.entry = "sensor_delay", c.where = where, c.name = fmt::format("sensor_delay[{}.*]", where), c.unit = "s";
+    c.description = fmt::format("every sensor of {} lags the table's (another clock; a delay in the recording, not physics)", whose);
     c.lower = -0.1, c.upper = 0.1, c.nominal = 0, c.recording = index;
-    c.correct = [body](Recording& r, double delay) {
+    c.correct = [bodies](Recording& r, double delay) {
       for (RecordingChannel& ch : r.channels)
-        if (ch.name.rfind(body + ".", 0) == 0) shift_back(r, ch, delay);
+        for (const std::string& body : bodies)
+          if (ch.name.rfind(body + ".", 0) == 0) shift_back(r, ch, delay);
     };
     out.push_back(c);
-  }
+  };
+  for (const std::string& body : clocked) clock({body}, body, body);
+  if (clocked.size() >= 2) clock(clocked, kEveryBody, "every body");
   return out;
 }
 
@@ -881,7 +888,8 @@ MeasurementIssue sensor_issue(const FittedCandidate& f, const std::vector<std::s
   if (delay) m.delay = f.value, m.delay_significant = true;
   else m.gain = f.value, m.gain_sd = f.standard_error, m.gain_significant = true;
   const bool every = m.channel.find('.') == std::string::npos;  // a body's clock: all its channels
-  m.text = delay ? fmt::format("{}{} lags by {:.1f} ms", every ? "every channel of " : "", m.channel, 1e3 * f.value)
+  const std::string whose = m.channel == kEveryBody ? "every body" : m.channel;
+  m.text = delay ? fmt::format("{}{} lags by {:.1f} ms", every ? "every channel of " : "", whose, 1e3 * f.value)
                  : fmt::format("{} reads {:.1f} % {} (gain {:.3f})", m.channel, 100 * std::abs(f.value - 1),
                                f.value > 1 ? "high" : "low", f.value);
   m.text += fmt::format(" (misfit {:.1f} -> {:.1f}, p = {:.2g}{})", f.chi2 + f.delta, f.chi2, f.p_value,

@@ -119,8 +119,11 @@ Features event_features(const Recording& recording, const nlohmann::json& analys
 // significant; reported against the final model); a delay or gain, estimated against the
 // nominal run, is accepted only as a candidate that beats every physics candidate on the
 // event features.
+// MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
+inline const std::string kEveryBody = "*";
+
 struct MeasurementIssue {
-  std::string channel;        // "block.rock_x"
+  std::string channel;        // "block.rock_x"; a body ("block"): all its channels; kEveryBody: every body's
   std::size_t recording = 0;  // index of the recording it was measured on
   double delay = 0, gain = 1, gain_sd = 0, bias = 0, drift = 0;  // s, -, -, channel units, units/s
   double correlation = 0;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 #include "diagnosis.h"
 #include "diagnosis_report.h"
@@ -395,6 +396,51 @@ TEST(Diagnosis, MeasuresAClockOffsetOfABodysSensorsNotPhysics) {
   EXPECT_NEAR(d.measurement.front().delay, 0.04, 0.01);
   std::cout << fmt::format("measured: delay of {} = {:.4f} s for 0.04\n", d.measurement.front().channel,
                            d.measurement.front().delay);
+}
+
+// Two blocks rocking freely side by side, every body channel 40 ms late (the specimen's
+// acquisition on another clock than the table's): the delay of every body is named, not one
+// body's, and it takes the evidence of both (its drop at least each body's own). Tolerance as
+// above: 10 ms, two steps of the delay grid.
+TEST(Diagnosis, MeasuresTheSpecimensClockOffsetOverEveryBody) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  json second = truth["bodies"][0];
+  const double b = 0.1, t = 0.4 * std::atan(1.0 / 3.0);  // the other block tilted less, so it rocks apart
+  second["name"] = "second";
+  second["position"] = {b - b * std::cos(t), 0.6, b * std::sin(t)};
+  second["orientation"] = {std::cos(t / 2), 0.0, std::sin(t / 2), 0.0};
+  truth["bodies"].push_back(second);
+  json joint = truth["interfaces"][0];
+  joint["upper"] = "second";
+  truth["interfaces"].push_back(joint);
+  Recording recording = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 17});
+  std::vector<RecordingChannel> kept;
+  for (RecordingChannel& c : recording.channels) {
+    if (c.name.find(".rock_") == std::string::npos) continue;
+    const std::vector<double> y = c.values;
+    for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(recording.time, y, recording.time[k] - 0.04);
+    kept.push_back(c);
+  }
+  recording.channels = kept;
+  for (json& body : recording.nominal["bodies"]) body.erase("com");
+  recording.path = "synthetic_two_blocks";
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
+  std::cerr << d.verdict;
+  EXPECT_TRUE(d.effects.empty());
+  ASSERT_FALSE(d.measurement.empty());
+  EXPECT_EQ(d.measurement.front().channel, diagnosis::kEveryBody);
+  EXPECT_TRUE(d.measurement.front().delay_significant);
+  EXPECT_NEAR(d.measurement.front().delay, 0.04, 0.01);
+  EXPECT_NE(d.verdict.find("every channel of every body lags"), std::string::npos);
+  ASSERT_FALSE(d.rounds.empty());
+  std::map<std::string, double> drop;  // round 1's profile drop of each clock
+  for (const diagnosis::FittedCandidate& f : d.rounds.front()) drop[f.candidate.name] = f.delta;
+  ASSERT_EQ(drop.count("sensor_delay[*.*]"), 1u);
+  EXPECT_GE(drop["sensor_delay[*.*]"], std::max(drop["sensor_delay[block.*]"], drop["sensor_delay[second.*]"]));
+  std::cout << fmt::format("measured: delay of every body = {:.4f} s for 0.04\n", d.measurement.front().delay);
 }
 
 // The truth rocks on a distributed base (surface grid, 8 segments per edge); the recording
