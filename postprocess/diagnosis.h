@@ -114,14 +114,14 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal,
                         const SlipReference* reference = nullptr);
 
+// MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
+inline const std::string kEveryBody = "*";
+
 // A measurement issue of one channel: recorded ~ gain * simulated(t - delay) + bias + drift t.
 // A drift at rest belongs to each simulation it was measured against (added to it where
 // significant; reported against the final model); a delay or gain, estimated against the
 // nominal run, is accepted only as a candidate that beats every physics candidate on the
 // event features.
-// MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
-inline const std::string kEveryBody = "*";
-
 struct MeasurementIssue {
   std::string channel;        // "block.rock_x"; a body ("block"): all its channels; kEveryBody: every body's
   std::size_t recording = 0;  // index of the recording it was measured on
