@@ -340,12 +340,20 @@ void simulate_each(const std::vector<json>& models, const std::vector<const Reco
       const std::string dir = (fs::path(directory) / fmt::format("run_{}", i)).string();
       Recording simulated;
       std::exception_ptr failure;
-      try {
-        simulated = simulate_recording(models[i], *recordings[i], dir);
-      } catch (...) {
-        failure = std::current_exception();
-      }
       std::error_code ignored;
+      // A failed run is run once more, from a clean directory: a model's own error (a LIGGGHTS
+      // ERROR) fails again, but a run lost to its process (a signal, MPI's start-up, the file
+      // system) must not decide a fit or a diagnosis. The second failure is the one passed on.
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        fs::remove_all(dir, ignored);
+        try {
+          simulated = simulate_recording(models[i], *recordings[i], dir);
+          failure = nullptr;
+          break;
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      }
       fs::remove_all(dir, ignored);
       done(i, std::move(simulated), failure);
     }

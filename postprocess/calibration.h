@@ -152,7 +152,8 @@ std::vector<Recording> simulate_recordings(const std::vector<nlohmann::json>& mo
 // subdirectory of `directory` (removed after reading), and hands each result to
 // `done(index, simulated, failure)` as it finishes, on the worker's thread (so
 // `done` may do the per-run analysis while the other workers simulate; it must
-// not touch shared state without a lock). A failed run passes its exception.
+// not touch shared state without a lock). A failed run is run once more; one that
+// fails again passes its exception.
 void simulate_each(const std::vector<nlohmann::json>& models, const std::vector<const Recording*>& recordings,
                    const std::string& directory, int jobs,
                    const std::function<void(std::size_t, Recording&&, std::exception_ptr)>& done);

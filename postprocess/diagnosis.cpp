@@ -507,6 +507,17 @@ Features whole_part(const Features& f) {
 // A parameter point of the model: documents for every recording.
 using Model = std::vector<json>;
 
+// A failed run's error, as its exception says it.
+std::string failure_message(const std::exception_ptr& failure) {
+  try {
+    std::rethrow_exception(failure);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "an exception that is not a std::exception";
+  }
+}
+
 std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& recordings, int members,
                                double table_gain_sd);
 
@@ -554,6 +565,8 @@ class Search {
                     if (failure) {
                       failures[i] = failure;
                       out[i][kFailedSimulation] = {};
+                      const std::lock_guard<std::mutex> lock(progress_lock);
+                      if (failed_runs++ == 0) first_failure = failure_message(failure);
                     } else {
                       if (raw && i < raw->size()) (*raw)[i] = sim;
                       out[i] = features_of(std::move(sim), jobs[i]);
@@ -644,6 +657,8 @@ class Search {
   }
 
   int simulations = 0;
+  int failed_runs = 0;        // runs that failed twice (simulate_each runs a failed one again)
+  std::string first_failure;  // the first one's error
 
  private:
   const std::vector<Recording>& recordings_;
@@ -1980,6 +1995,7 @@ void Diagnoser::finish() {
       final_members, std::max(options_.z_threshold, family_wise_z(options_.alpha, static_cast<int>(target_.recorded.size()))));
   against_improved(final_members);
   d_.simulations += search_.simulations;
+  d_.failed_simulations = search_.failed_runs, d_.first_failure = search_.first_failure;
   d_.improved = improved_scenario();
 }
 

@@ -251,6 +251,8 @@ struct Diagnosis {
   std::string verdict;                         // plain-language summary
   double z_threshold = 3;                      // Options::z_threshold used
   int simulations = 0;
+  int failed_simulations = 0;                  // runs that failed twice: counted as not fitting (not chosen, not accepted)
+  std::string first_failure;                   // the first one's error
 };
 
 // Diagnoses `recordings` (the last is held out when there are several; with

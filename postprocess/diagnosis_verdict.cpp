@@ -141,6 +141,10 @@ std::string verdict_text(const Diagnosis& d) {
   for (const HypothesisComparison& c : d.hypothesis_pairs)
     v += fmt::format("Hypothesis {} against {}: fits {} ({}, every feature).\n", c.second + 1, c.first + 1,
                      c.second_fits, difference_words(c.delta, c.delta_se));
+  if (d.failed_simulations > 0)
+    v += fmt::format("Caution: {} of {} simulations failed, also when run again (first: {}). A failed run counts as not "
+                     "fitting, so a candidate value that failed was neither chosen nor accepted: an effect may be "
+                     "missing from this verdict.\n", d.failed_simulations, d.simulations, d.first_failure);
   return v + closing_words(d);
 }
 
@@ -166,7 +170,8 @@ json diagnosis_json(const Diagnosis& d) {
   };
   json out = {{"verdict", d.verdict}, {"feature_count", d.feature_count}, {"chi2_nominal", d.chi2_nominal},
               {"chi2_final", d.chi2_final}, {"chi2_noise_limit_99", d.chi2_noise_limit},
-              {"simulations", d.simulations}, {"notes", d.notes}, {"improved_scenario", d.improved}};
+              {"simulations", d.simulations}, {"failed_simulations", d.failed_simulations},
+              {"first_failure", d.first_failure}, {"notes", d.notes}, {"improved_scenario", d.improved}};
   out["grid_checks"] = json::array();
   for (const GridCheck& c : d.grid_checks)
     out["grid_checks"].push_back({{"model", c.model}, {"reference", json::parse(c.reference)}, {"distance", c.distance}, {"limit", c.limit},

@@ -83,7 +83,8 @@ LiggghtsOutcome run_liggghts(const LiggghtsRun& run, const std::function<void(lo
     else if (total > 0 && thermo_step(line, &step)) progress(step, total);
   }
   const int raw = pclose(pipe);
-  outcome.status = raw == -1 ? -1 : WEXITSTATUS(raw);
+  // A process killed by a signal has no exit status: reported as a shell would (128 + signal).
+  outcome.status = raw == -1 ? -1 : WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   if (outcome.status != 0 && outcome.error.empty())
     outcome.error = fmt::format("freestand-lmp exited with status {} (see {})", outcome.status,
                                 (fs::path(run.directory) / run.log).string());

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "calibration.h"
 #include "freestand/input_error.h"
@@ -93,6 +94,44 @@ TEST(Calibration, RecoversRestitutionFromNoisyFreeRocking) {
 }
 
 const MeasurementNoise kNoise{1e-3, 5e-4, 7};  // 1 mrad on the angles, 0.5 mm on lengths
+
+// A run lost to its process once (the launcher killed on its first call, by a stand-in for
+// `stdbuf` first on PATH) is run again and gives exactly the recording of a run never lost; a
+// model that cannot run fails both times and passes on why.
+TEST(Calibration, ARunLostOnceIsRunAgainAndAModelThatCannotRunSaysWhy) {
+  test::TempDir dir;
+  const Recording recorded = synthetic_recording(drop_scenario(), dir / "drop", kNoise);
+  const json good = recording_scenario(model(), recorded, "table_motion.csv");
+  json bad = good;
+  bad["contact"]["stiffness"] = -1.0;
+  const Recording reference = simulate_recording(good, recorded, dir / "reference");
+  const std::filesystem::path bin = dir / "bin";
+  std::filesystem::create_directories(bin);
+  const std::string lost = dir / "lost";
+  dir.write("bin/stdbuf", "#!/bin/sh\nif [ ! -e '" + lost + "' ]; then : > '" + lost + "'; kill -9 $$; fi\n"
+                          "exec /usr/bin/stdbuf \"$@\"\n");
+  std::filesystem::permissions(bin / "stdbuf", std::filesystem::perms::owner_all);
+  const std::string path = std::getenv("PATH");
+  setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+  std::vector<Recording> out(2);
+  std::vector<std::string> errors(2);
+  simulate_each({good, bad}, {&recorded, &recorded}, dir / "runs", 1,
+                [&](std::size_t i, Recording&& simulated, std::exception_ptr failure) {
+                  out[i] = std::move(simulated);
+                  try {
+                    if (failure) std::rethrow_exception(failure);
+                  } catch (const std::exception& e) {
+                    errors[i] = e.what();
+                  }
+                });
+  setenv("PATH", path.c_str(), 1);
+  EXPECT_TRUE(std::filesystem::exists(lost)) << "the stand-in was never called";
+  EXPECT_EQ(errors[0], "");
+  ASSERT_EQ(out[0].channels.size(), reference.channels.size());
+  for (std::size_t k = 0; k < reference.channels.size(); ++k)
+    EXPECT_EQ(out[0].channels[k].values, reference.channels[k].values) << reference.channels[k].name;
+  EXPECT_NE(errors[1].find("stiffness"), std::string::npos) << errors[1];
+}
 
 // Replayed at the true parameters, the recorded table acceleration reproduces
 // the sliding record (made with the analytic sweep) to within its noise: the

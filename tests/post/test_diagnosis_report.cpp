@@ -2,6 +2,7 @@
 // recording the feature belongs to (features of several recordings are named "rN:...").
 
 #include "diagnosis_report.h"
+#include "diagnosis_verdict.h"
 
 #include <gtest/gtest.h>
 
@@ -57,6 +58,22 @@ TEST(DiagnosisReport, DrawsANamedEffectsProfileOnItsScale) {
   EXPECT_NE(html.find("log10 contact_stiffness"), std::string::npos);
   EXPECT_EQ(html.find("inf"), std::string::npos) << "a failed point drawn";
   EXPECT_EQ(count_lines(html), 1);
+}
+
+// Runs that failed twice count as not fitting, so the verdict warns that it may miss an effect,
+// says how many failed and why the first did, and the JSON carries both.
+TEST(DiagnosisVerdict, SaysHowManySimulationsFailedAndWhy) {
+  Diagnosis d;
+  d.simulations = 40, d.feature_count = 10, d.chi2_final = 5, d.chi2_noise_limit = 23.2;
+  EXPECT_EQ(verdict_text(d).find("Caution"), std::string::npos);
+  d.failed_simulations = 3, d.first_failure = "run_7/scenario.json: simulation failed: exited with status 137";
+  const std::string v = verdict_text(d);
+  EXPECT_NE(v.find("Caution: 3 of 40 simulations failed, also when run again (first: run_7/scenario.json"),
+            std::string::npos) << v;
+  EXPECT_LT(v.find("Caution"), v.find("No missing physics")) << "the caution comes before the verdict it qualifies";
+  const nlohmann::json j = diagnosis_json(d);
+  EXPECT_EQ(j["failed_simulations"], 3);
+  EXPECT_EQ(j["first_failure"], d.first_failure);
 }
 
 }  // namespace
