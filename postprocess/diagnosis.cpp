@@ -557,7 +557,7 @@ class Search {
     }
     std::vector<Features> out(jobs.size());
     std::vector<std::exception_ptr> failures(jobs.size());
-    std::mutex progress_lock;
+    std::mutex shared_lock;  // over the progress count and the failure count
     long finished = 0;
     if (options_.progress) options_.progress(stage, 0, static_cast<long>(jobs.size()));
     simulate_each(models, recs, (fs::path(directory_) / fmt::format("batch_{}", batches_++)).string(), options_.jobs,
@@ -565,13 +565,13 @@ class Search {
                     if (failure) {
                       failures[i] = failure;
                       out[i][kFailedSimulation] = {};
-                      const std::lock_guard<std::mutex> lock(progress_lock);
+                      const std::lock_guard<std::mutex> lock(shared_lock);
                       if (failed_runs++ == 0) first_failure = failure_message(failure);
                     } else {
                       if (raw && i < raw->size()) (*raw)[i] = sim;
                       out[i] = features_of(std::move(sim), jobs[i]);
                     }
-                    const std::lock_guard<std::mutex> lock(progress_lock);
+                    const std::lock_guard<std::mutex> lock(shared_lock);
                     if (options_.progress) options_.progress(stage, ++finished, static_cast<long>(jobs.size()));
                   });
     simulations += static_cast<int>(jobs.size());

@@ -1,5 +1,6 @@
 // The diagnosis report overlays the channel a mismatched feature is read from, of the
 // recording the feature belongs to (features of several recordings are named "rN:...").
+// The verdict's words on simulations that failed.
 
 #include "diagnosis_report.h"
 #include "diagnosis_verdict.h"
