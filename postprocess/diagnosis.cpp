@@ -1,6 +1,5 @@
 #include "diagnosis.h"
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <stdlib.h>
 
@@ -38,11 +37,7 @@ const double kMinDuration = 0.5;   // s: a shorter record holds too few events t
 const int kMinSamples = 50;
 const double kIndistinguishable = 2;  // chi2 difference below which two fits are not told apart
                                       // (likelihood ratio e: "not worth more than a bare mention", Kass & Raftery 1995)
-const double kMinRest = 1.0;       // s: the shortest rest whose slope counts towards a drift (rest_slopes)
-const double kMinCarryRest = 0.25;  // s: the shortest rest whose carry by the table is a feature (rest_slopes): the
-                                    // carry's regressor is the travel, which a shaking table spans by centimetres in
-                                    // a quarter second, and a table strong enough to rock a block often does so
-                                    // within its first second
+const double kMinRest = 1.0;       // s: the shortest rest whose slope counts towards a drift (rest_drift)
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
 const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
@@ -57,70 +52,6 @@ const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body 
 // ------------------------------------------------------------------ features
 
 double sample_step(const std::vector<double>& t) { return signal::median_step(t); }
-
-// Samples of `time` inside a rest segment of `modes`.
-std::vector<bool> at_rest(const std::vector<double>& time, const std::vector<analysis::ModeSegment>& modes) {
-  std::vector<bool> rest(time.size(), false);
-  for (const analysis::ModeSegment& seg : modes)
-    if (seg.mode == analysis::Mode::rest) {
-      const signal::IndexRange r = signal::index_range(time, seg.start, seg.end);
-      for (std::size_t k = r.first; k < r.last; ++k) rest[k] = true;
-    }
-  return rest;
-}
-
-// A channel's pooled slopes over the samples at rest, with their s.d. from the noise.
-struct RestSlopes {
-  double drift = 0;        // per s: a sensor's drift
-  double drift_sd = kNaN;  // NaN: no rest long enough
-  double carry = 0;        // per m of the table's x travel: table motion carrying the body
-  double carry_sd = kNaN;  // NaN: no table travel at rest (or no table_dx given)
-};
-
-// Least squares of y on time and, when given, the table's x displacement `travel`, over the
-// runs of samples at rest at least `min_rest` long, each run about its own means (the body's
-// offset at each rest drops out). Both at once: a table that carries a resting body (a vertical
-// component lifts it by a_z / a_x of the travel, a pitch tilts it by its rad/m) while it travels
-// one way looks like a drift (case19 of the proof study: 0.0025 m/s of "uplift drift" that is a
-// carry of 0.0138 +- 0.0018 per m with a drift of 0.0001 +- 0.0004 m/s), and a drift like a
-// carry. min_rest for a drift: a sensor drifts slowly; in a short rest a body is still settling (an
-// ensemble member's 1 mrad initial tilt falls back in about 0.05 s; the last small impacts of
-// a rocking episode), and the 0.05-0.1 s rests between the rocks of the table-pitch test gave
-// "drifts" of 30-60 mrad/s, which extrapolated over the record became 0.1 rad. A transient of
-// amplitude A and length tau biases the slope of a run of length L by about 6 A tau / L^2:
-// for A = 1 noise s.d. and tau = 0.05 s, 1.2 s.d. of the slope at L = 1 s (200 Hz).
-RestSlopes rest_slopes(const std::vector<double>& time, const std::vector<double>& y, const std::vector<double>* travel,
-                       const std::vector<bool>& rest, double noise, double min_rest) {
-  Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();  // sums of (t, x) (t, x)^T about each run's means
-  Eigen::Vector2d moment = Eigen::Vector2d::Zero();  // sums of (t, x) y about them
-  for (std::size_t first = 0; first < time.size();) {
-    std::size_t last = first;
-    while (last < time.size() && rest[last]) ++last;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();  // (t, x, y)
-    int n = 0;
-    auto sample = [&](std::size_t k) { return Eigen::Vector3d(time[k], travel ? (*travel)[k] : 0.0, y[k]); };
-    for (std::size_t k = first; k < last; ++k)
-      if (sample(k).allFinite()) sum += sample(k), ++n;
-    if (n >= 3 && time[last - 1] - time[first] >= min_rest)
-      for (std::size_t k = first; k < last; ++k)
-        if (sample(k).allFinite()) {
-          const Eigen::Vector3d d = sample(k) - sum / n;
-          normal += d.head<2>() * d.head<2>().transpose(), moment += d.head<2>() * d.z();
-        }
-    first = last + 1;
-  }
-  RestSlopes out;
-  if (normal(0, 0) <= 0) return out;
-  if (normal(1, 1) <= 0) {  // no travel at rest: the drift alone
-    out.drift = moment(0) / normal(0, 0), out.drift_sd = noise / std::sqrt(normal(0, 0));
-    return out;
-  }
-  const Eigen::Matrix2d covariance = normal.inverse() * noise * noise;
-  const Eigen::Vector2d slope = normal.ldlt().solve(moment);
-  out.drift = slope(0), out.drift_sd = std::sqrt(covariance(0, 0));
-  out.carry = slope(1), out.carry_sd = std::sqrt(covariance(1, 1));
-  return out;
-}
 
 }  // namespace
 
@@ -295,15 +226,6 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     if (!body.motion.channels[0].empty() && !body.motion.channels[1].empty())
       add("residual_tilt", analysis::tilt(s.residual.mean[0], s.residual.mean[1]), s.residual.window_start,
           p.angle_noise, "rock", false);
-    // How far the body rises per m of table travel while it rests: table motion the model was
-    // not given (a vertical component in step with x) carries it, where a chaotic rock cannot
-    // reach. Its floor is the slope's s.d. from the length noise.
-    if (const std::vector<double>* travel = r.table_channel('d', 'x');
-        travel && !body.motion.channels[analysis::kUplift].empty()) {
-      const RestSlopes carry = rest_slopes(body.motion.time, body.motion.channels[analysis::kUplift], travel,
-                                           at_rest(body.motion.time, s.modes), p.length_noise, kMinCarryRest);
-      if (std::isfinite(carry.carry_sd)) add("uplift.table_carry", carry.carry, 0, carry.carry_sd, "uplift", false);
-    }
   }
   return out;
 }
@@ -311,6 +233,43 @@ Features event_features(const Recording& recording, const json& analysis_nominal
 namespace {
 
 // ------------------------------------------------------------------ measurement
+
+// Samples of `time` inside a rest segment of `modes`.
+std::vector<bool> at_rest(const std::vector<double>& time, const std::vector<analysis::ModeSegment>& modes) {
+  std::vector<bool> rest(time.size(), false);
+  for (const analysis::ModeSegment& seg : modes)
+    if (seg.mode == analysis::Mode::rest) {
+      const signal::IndexRange r = signal::index_range(time, seg.start, seg.end);
+      for (std::size_t k = r.first; k < r.last; ++k) rest[k] = true;
+    }
+  return rest;
+}
+
+// Pooled within-run slope of y over the runs of samples at rest (s.d. from the noise), of runs
+// at least kMinRest long. A sensor drifts slowly; in a short rest a body is still settling (an
+// ensemble member's 1 mrad initial tilt falls back in about 0.05 s; the last small impacts of
+// a rocking episode), and the 0.05-0.1 s rests between the rocks of the table-pitch test gave
+// "drifts" of 30-60 mrad/s, which extrapolated over the record became 0.1 rad. A transient of
+// amplitude A and length tau biases the slope of a run of length L by about 6 A tau / L^2:
+// for A = 1 noise s.d. and tau = 0.05 s, 1.2 s.d. of the slope at L = 1 s (200 Hz).
+std::pair<double, double> rest_drift(const std::vector<double>& time, const std::vector<double>& y,
+                                     const std::vector<bool>& rest, double noise) {
+  double sxy = 0, sxx = 0;
+  for (std::size_t first = 0; first < time.size();) {
+    std::size_t last = first;
+    while (last < time.size() && rest[last]) ++last;
+    double st = 0, sy = 0;
+    int n = 0;
+    for (std::size_t k = first; k < last; ++k)
+      if (std::isfinite(y[k])) st += time[k], sy += y[k], ++n;
+    if (n >= 3 && time[last - 1] - time[first] >= kMinRest)
+      for (std::size_t k = first; k < last; ++k)
+        if (std::isfinite(y[k])) sxy += (time[k] - st / n) * (y[k] - sy / n), sxx += std::pow(time[k] - st / n, 2);
+    first = last + 1;
+  }
+  if (sxx <= 0) return {0.0, kNaN};
+  return {sxy / sxx, noise / std::sqrt(sxx)};
+}
 
 // The significant drifts at rest of `rec`'s channels against `sim`, a simulation of it: the slope
 // of recorded minus simulated where both rest, which the model cannot make. Not of the recorded
@@ -340,8 +299,7 @@ std::vector<MeasurementIssue> rest_drifts(const Recording& rec, std::size_t reco
       std::vector<double> difference(body.motion.time.size());
       for (std::size_t k = 0; k < difference.size(); ++k)
         difference[k] = body.motion.channels[c][k] - signal::interpolate(sim.time, simulated->values, body.motion.time[k]);
-      const RestSlopes slopes = rest_slopes(body.motion.time, difference, rec.table_channel('d', 'x'), rest, noise, kMinRest);
-      const double drift = slopes.drift, drift_sd = slopes.drift_sd;
+      const auto [drift, drift_sd] = rest_drift(body.motion.time, difference, rest, noise);
       if (!(std::isfinite(drift_sd) && std::abs(drift) > 4 * drift_sd && std::abs(drift) * duration > 4 * noise)) continue;
       MeasurementIssue m;
       m.channel = name, m.recording = recording, m.drift = drift, m.drift_significant = true;
