@@ -110,9 +110,10 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 // geometry and noise thresholds (the recording's nominal, for both sides). Slip i names the
 // reference's slip i it is matched to (matched_slips); one matched to none is numbered on
 // after the reference's, in time order (an event the reference lacks). Without a reference,
-// slips are numbered in time order.
+// slips are numbered in time order. `gain_sd`: the relative s.d. of a ratio of a body channel to
+// the table's (their gains'), the floor of such a feature (the table carry).
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal,
-                        const SlipReference* reference = nullptr);
+                        const SlipReference* reference = nullptr, double gain_sd = 0);
 
 // MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
 inline const std::string kEveryBody = "*";
