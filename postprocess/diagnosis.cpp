@@ -296,26 +296,19 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     if (!body.motion.channels[0].empty() && !body.motion.channels[1].empty())
       add("residual_tilt", analysis::tilt(s.residual.mean[0], s.residual.mean[1]), s.residual.window_start,
           p.angle_noise, "rock", false);
-    // Table motion at rest: how far the body rises per m of table travel (a table the model was
-    // not given, such as a vertical component in step with x, carries it where a chaotic rock
-    // cannot reach), and how far it tilts per m/s^2 of table acceleration (its elastic tilt on
-    // the contact: a softer contact tilts a resting block more, study 26). Each is fitted with a
-    // drift beside it. Its floor is the slope's s.d. from the noise, and at least the ratio's own
-    // from the gains of the two channels it divides (gain_sd): with the noise alone, case14's
-    // pedestal (0.819 carried, 0 in the model as given) read z = 1378, and any candidate that
-    // moved that one feature a little outranked the rest (study 25).
-    const std::vector<double>*travel = r.table_channel('d', 'x'), *acceleration = r.table_channel('a', 'x');
-    const std::vector<bool> rest = at_rest(body.motion.time, s.modes);
-    const auto add_slope = [&](const std::string& name, int c, std::vector<const std::vector<double>*> regressors,
-                               std::size_t which, double noise) {
-      if (body.motion.channels[c].empty() || std::count(regressors.begin(), regressors.end(), nullptr)) return;
-      const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[c], regressors, rest, noise, kMinCarryRest);
-      const double value = fit.slope(1 + which), sd = fit.sd(1 + which);
-      if (std::isfinite(sd)) add(name, value, 0, std::max(sd, gain_sd * std::abs(value)), c == analysis::kUplift ? "uplift" : "rock", false);
-    };
-    add_slope("uplift.table_carry", analysis::kUplift, {travel}, 0, p.length_noise);
-    for (int axis : {0, 1})
-        add_slope(names[axis] + ".table_compliance", axis, {travel, acceleration}, 1, p.angle_noise);
+    // How far the body rises per m of table travel while it rests: table motion the model was
+    // not given (a vertical component in step with x) carries it, where a chaotic rock cannot
+    // reach. Fitted with a drift beside it. Its floor is the slope's s.d. from the length noise,
+    // and at least the ratio's own from the gains of the two channels it divides (gain_sd): with
+    // the noise alone, case14's pedestal (0.819 carried, 0 in the model as given) read z = 1378,
+    // and any candidate that moved that one feature a little outranked the rest (study 25).
+    if (const std::vector<double>* travel = r.table_channel('d', 'x');
+        travel && !body.motion.channels[analysis::kUplift].empty()) {
+      const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[analysis::kUplift], {travel},
+                                         at_rest(body.motion.time, s.modes), p.length_noise, kMinCarryRest);
+      const double carry = fit.slope(1), sd = fit.sd(1);
+      if (std::isfinite(sd)) add("uplift.table_carry", carry, 0, std::max(sd, gain_sd * std::abs(carry)), "uplift", false);
+    }
   }
   return out;
 }

@@ -733,34 +733,13 @@ TEST(DiagnosisFeatures, ReadsARestingBodysCarryByTheTableApartFromADrift) {
     std::cout << fmt::format("measured: carry {:.5f} +- {:.5f} for {}\n", carry->second.value, carry->second.floor, k);
     EXPECT_NEAR(carry->second.value, k, 3 * carry->second.floor);
     EXPECT_LT(carry->second.floor, 0.0125 / 3);
+    // A ratio of two channels is known no better than their gains: at a gain s.d. of 50 % the
+    // floor is half the carry where that exceeds the noise's s.d.
+    const diagnosis::Features g = diagnosis::event_features(r, r.nominal, nullptr, 0.5);
+    const auto loose = g.find("block.uplift.table_carry");
+    ASSERT_NE(loose, g.end());
+    EXPECT_DOUBLE_EQ(loose->second.floor, std::max(carry->second.floor, 0.5 * std::abs(carry->second.value)));
   }
-}
-
-// A block standing on its contact bed tilts elastically with the table's acceleration a. About
-// its base centre, quasi-statically, M a h = (K - M g h) theta: the inertial force at the
-// centre of mass against the bed's rotational stiffness K = k_a sum A_i x_i^2 (four corner nodes
-// of a quarter of the base each: k_a A b^2) less gravity's overturning moment on the tilt. The
-// table gives three 1 Hz one-sine pulses of 0.5 m/s^2 (the tilt, 1.2 mrad, stays below uplift
-// at 3.3 m/s^2 and within the rest threshold). The feature must read that tilt per m/s^2 within
-// 3 of its s.d. plus 6 %: the bed's rocking frequency is 5.2 Hz here, so the pulses are not
-// quite quasi-static (a steady 1 Hz drive would be amplified by 1 / (1 - (1 / 5.2)^2), 4 %).
-// Measured: 0.00260 +- 0.00015 for 0.00230; with the sensor noise 1000 times smaller (the rest
-// thresholds kept), 0.00242 (+5.3 %).
-TEST(DiagnosisFeatures, ReadsARestingBodysElasticTiltOnItsContact) {
-  test::TempDir dir;
-  const json truth =
-      standing_on(pulses_table(dir, "tilt", {{0.2, 0.5, 1.0}, {1.7, -0.5, 1.0}, {3.2, 0.5, 1.0}}, 5.0), 5.0);
-  const Recording r = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 52});
-  const json& block = truth["bodies"][0];
-  const double m = block["mass"], b = block["half_extents"][0], h = block["half_extents"][2], g = 9.81;
-  const double bed = kStiffness * 4 * b * b * b * b;  // k_a A b^2, A = (2b)^2
-  const double expected = m * h / (bed - m * g * h);
-  const diagnosis::Features f = diagnosis::event_features(r, r.nominal);
-  const auto tilt = f.find("block.rock_x.table_compliance");
-  ASSERT_NE(tilt, f.end());
-  std::cout << fmt::format("measured: tilt {:.4g} +- {:.2g} rad per m/s^2 for {:.4g} (quasi-static)\n",
-                           std::abs(tilt->second.value), tilt->second.floor, expected);
-  EXPECT_NEAR(std::abs(tilt->second.value), expected, 3 * tilt->second.floor + 0.06 * expected);
 }
 
 // Slips are the same event when they overlap, one to one, nearest onsets first: an extra
