@@ -225,7 +225,7 @@ struct GridCheck {            // the model's contact grid against the finest one
   std::string model;          // the model checked: "as given", or its contacts at the softest profiled stiffness
   std::string reference;      // the finest grid's nodes (JSON)
   double distance = 0;        // chi2 of the finest grid's run against the model's ensemble (its z, as a recording's)
-  double limit = 0;           // 99 % quantile of chi2(features): beyond it the model was not converged
+  double limit = 0;           // the mean of chi2(features): beyond it the model was not converged
   bool adopted = false;       // not converged: the model's grid was refined one step, to `grid`
   std::string grid;           // the grid adopted (JSON); empty when converged
 };

@@ -125,7 +125,7 @@ std::string verdict_text(const Diagnosis& d) {
   for (const GridCheck& c : d.grid_checks)
     if (c.adopted)
       v += fmt::format("Numerics: the model's contact grid was not converged for the model {} (on the finest grid {} the "
-                       "features moved by {:.0f} against a 99 % limit of {:.0f}); refined to {}.\n", c.model, c.reference,
+                       "features moved by {:.0f} against a limit of {:.0f}, chi2's mean); refined to {}.\n", c.model, c.reference,
                        c.distance, c.limit, c.grid);
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
