@@ -239,6 +239,7 @@ struct Diagnosis {
   int feature_count = 0;
   double chi2_nominal = 0, chi2_final = 0;     // -2 log L of the model as given and as improved
   double chi2_noise_limit = 0;                 // 99 % quantile of chi2(feature_count): consistent with noise below
+  int closing_members = 0;                     // members chi2_final is read on: M, or 2 M where M read it beyond the limit
   std::vector<std::vector<FittedCandidate>> rounds;  // every candidate's profile fit, per iteration
   std::vector<Effect> effects;
   std::vector<HypothesisTest> hypotheses;     // Options::hypotheses, in their order

@@ -100,13 +100,14 @@ std::string closing_words(const Diagnosis& d) {
   const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
   if (noise_only && d.effects.empty())
     return fmt::format("No missing physics found: the model matches the recording within noise and chaos "
-                       "(misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n", d.chi2_final, d.feature_count,
-                       d.chi2_noise_limit);
+                       "(misfit {:.1f} for {} features on {} members, 99 % noise limit {:.1f}).\n", d.chi2_final,
+                       d.feature_count, d.closing_members, d.chi2_noise_limit);
   if (noise_only)
-    return fmt::format("Nothing significant is left (misfit {:.1f} for {} features, 99 % noise limit {:.1f}).\n",
-                       d.chi2_final, d.feature_count, d.chi2_noise_limit);
-  std::string v = fmt::format("Unexplained: no candidate explains the rest (misfit {:.1f} for {} features, 99 % noise "
-                              "limit {:.1f}).", d.chi2_final, d.feature_count, d.chi2_noise_limit);
+    return fmt::format("Nothing significant is left (misfit {:.1f} for {} features on {} members, 99 % noise limit {:.1f}).\n",
+                       d.chi2_final, d.feature_count, d.closing_members, d.chi2_noise_limit);
+  std::string v = fmt::format("Unexplained: no candidate explains the rest (misfit {:.1f} for {} features on {} members, "
+                              "99 % noise limit {:.1f}).", d.chi2_final, d.feature_count, d.closing_members,
+                              d.chi2_noise_limit);
   if (!d.unexplained.empty())
     v += fmt::format(" Mismatched from t = {:.2f} s ({}) to t = {:.2f} s.", d.unexplained.front().time,
                      event_words(d.unexplained.front()), d.unexplained.back().time);
@@ -169,7 +170,7 @@ json diagnosis_json(const Diagnosis& d) {
                 {"recorded", m.recorded}, {"simulated", m.simulated}, {"z", m.z}};
   };
   json out = {{"verdict", d.verdict}, {"feature_count", d.feature_count}, {"chi2_nominal", d.chi2_nominal},
-              {"chi2_final", d.chi2_final}, {"chi2_noise_limit_99", d.chi2_noise_limit},
+              {"chi2_final", d.chi2_final}, {"closing_members", d.closing_members}, {"chi2_noise_limit_99", d.chi2_noise_limit},
               {"simulations", d.simulations}, {"failed_simulations", d.failed_simulations},
               {"first_failure", d.first_failure}, {"notes", d.notes}, {"improved_scenario", d.improved}};
   out["grid_checks"] = json::array();

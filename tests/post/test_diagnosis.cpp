@@ -245,6 +245,31 @@ TEST(Diagnosis, NamesAndRecoversCentreOfMassOffset) {
     EXPECT_GT(inset->delta_se, 0);
 }
 
+// The closing verdict is read on twice the members where the first M put the misfit beyond the
+// noise limit (a Monte Carlo estimate against chi2's limit), and on M where they did not. A 12 mm
+// COM offset with no effect allowed stays beyond the limit on 2 M (measured: 304.0 on 8 members
+// against 48.3); the model with the truth reads within it on M (13.3 on 4).
+TEST(Diagnosis, ReadsTheClosingVerdictOnMoreMembersWhereTheMisfitIsBeyondTheLimit) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["bodies"][0]["com"] = {0.012, 0.0, 0.3};
+  const Recording recording = rocking_recording(truth, dir, 13);
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 0;
+  const diagnosis::Diagnosis off = diagnosis::diagnose(model(0.3), {recording}, o);
+  std::cerr << off.verdict;
+  EXPECT_EQ(off.closing_members, 2 * o.ensemble);
+  EXPECT_GT(off.chi2_final, off.chi2_noise_limit);
+  EXPECT_NE(off.verdict.find("Unexplained"), std::string::npos);
+  Recording stated = recording;  // the nominal states the truth's COM
+  stated.nominal["bodies"][0]["com"] = truth["bodies"][0]["com"];
+  const diagnosis::Diagnosis on = diagnosis::diagnose(model(0.3), {stated}, o);
+  EXPECT_EQ(on.closing_members, o.ensemble);
+  EXPECT_LE(on.chi2_final, on.chi2_noise_limit);
+  std::cout << fmt::format("measured: closing misfit {:.1f} on {} members (COM as given 0), {:.1f} on {} (the truth's)\n",
+                           off.chi2_final, off.closing_members, on.chi2_final, on.closing_members);
+}
+
 // Rounded edges: the block rocks on edges 15 mm inside its 100 mm half-width, so it rocks at a
 // lower slenderness (faster, from a lower threshold) on both sides alike. Tolerance 3 mm: the last
 // refinement's spacing is 0.8 mm (a bracket of 0.15 of the 50 mm range, each side in thirds twice); the
