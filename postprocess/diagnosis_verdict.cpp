@@ -97,17 +97,13 @@ std::string hypothesis_words(const HypothesisTest& h, std::size_t number) {
 
 // Where the search ended: within the noise (with or without effects), or what is unexplained.
 std::string closing_words(const Diagnosis& d) {
+  const std::string misfit = fmt::format("misfit {:.1f} for {} features on {} members, 99 % noise limit {:.1f}",
+                                         d.chi2_final, d.feature_count, d.closing_members, d.chi2_noise_limit);
   const bool noise_only = d.chi2_final <= d.chi2_noise_limit && d.unexplained.empty();
   if (noise_only && d.effects.empty())
-    return fmt::format("No missing physics found: the model matches the recording within noise and chaos "
-                       "(misfit {:.1f} for {} features on {} members, 99 % noise limit {:.1f}).\n", d.chi2_final,
-                       d.feature_count, d.closing_members, d.chi2_noise_limit);
-  if (noise_only)
-    return fmt::format("Nothing significant is left (misfit {:.1f} for {} features on {} members, 99 % noise limit {:.1f}).\n",
-                       d.chi2_final, d.feature_count, d.closing_members, d.chi2_noise_limit);
-  std::string v = fmt::format("Unexplained: no candidate explains the rest (misfit {:.1f} for {} features on {} members, "
-                              "99 % noise limit {:.1f}).", d.chi2_final, d.feature_count, d.closing_members,
-                              d.chi2_noise_limit);
+    return "No missing physics found: the model matches the recording within noise and chaos (" + misfit + ").\n";
+  if (noise_only) return "Nothing significant is left (" + misfit + ").\n";
+  std::string v = "Unexplained: no candidate explains the rest (" + misfit + ").";
   if (!d.unexplained.empty())
     v += fmt::format(" Mismatched from t = {:.2f} s ({}) to t = {:.2f} s.", d.unexplained.front().time,
                      event_words(d.unexplained.front()), d.unexplained.back().time);
