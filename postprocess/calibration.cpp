@@ -335,6 +335,8 @@ void simulate_each(const std::vector<json>& models, const std::vector<const Reco
                    const std::string& directory, int jobs,
                    const std::function<void(std::size_t, Recording&&, std::exception_ptr)>& done) {
   std::atomic<std::size_t> next{0};
+  std::exception_ptr done_failed;  // the first exception `done` threw (an escaped one would end the process)
+  std::mutex done_lock;
   auto worker = [&] {
     for (std::size_t i; (i = next++) < models.size();) {
       const std::string dir = (fs::path(directory) / fmt::format("run_{}", i)).string();
@@ -355,12 +357,19 @@ void simulate_each(const std::vector<json>& models, const std::vector<const Reco
         }
       }
       fs::remove_all(dir, ignored);
-      done(i, std::move(simulated), failure);
+      try {
+        done(i, std::move(simulated), failure);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(done_lock);
+        if (!done_failed) done_failed = std::current_exception();
+        next = models.size();  // no more runs: their results would go nowhere
+      }
     }
   };
   std::vector<std::thread> threads;
   for (int k = 0; k < std::max(1, jobs); ++k) threads.emplace_back(worker);
   for (std::thread& t : threads) t.join();
+  if (done_failed) std::rethrow_exception(done_failed);
 }
 
 namespace {

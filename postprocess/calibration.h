@@ -153,7 +153,8 @@ std::vector<Recording> simulate_recordings(const std::vector<nlohmann::json>& mo
 // `done(index, simulated, failure)` as it finishes, on the worker's thread (so
 // `done` may do the per-run analysis while the other workers simulate; it must
 // not touch shared state without a lock). A failed run is run once more; one that
-// fails again passes its exception.
+// fails again passes its exception. An exception thrown by `done` stops the workers
+// after their current run and is rethrown here, the first one, once all have joined.
 void simulate_each(const std::vector<nlohmann::json>& models, const std::vector<const Recording*>& recordings,
                    const std::string& directory, int jobs,
                    const std::function<void(std::size_t, Recording&&, std::exception_ptr)>& done);

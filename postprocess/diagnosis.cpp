@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -45,6 +46,8 @@ const double kMinCarryRest = 0.25;  // s: the shortest rest whose carry by the t
                                     // within its first second
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
+const int kFinestStepDivisor = 4;   // the finest time step it affords: the model's over this
+const std::size_t kMinWindowSamples = 3;  // a fit window shorter than the motion analysis takes: profiles run whole
 const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
 const int kScreened = 2 * kAttempts;  // physics candidates screened per round (those whose profiles dropped most)
 const int kScreenMembers = 3;      // members a screened candidate runs as (a drop's jackknife needs 3 pairs)
@@ -1056,6 +1059,12 @@ json set_grid(Model& model, const std::set<std::string>& stated, int per_edge) {
   return grid;
 }
 
+// Every document's time step set to `step` (s); returns it (JSON).
+json set_time_step(Model& model, double step) {
+  for (json& document : model) document["simulation"]["time_step"] = step;
+  return step;
+}
+
 // The nominal run of every recording (seed 1) and `members` perturbed copies: initial tilt
 // (where the body states its orientation) and spin perturbed by the angle noise, each with
 // its own noise seed.
@@ -1250,8 +1259,12 @@ class Diagnoser {
   void retarget();
   void check_grid();
   void check_soft_grid(const nlohmann::json& finest_grid);
-  GridCheck grid_distance(const std::string& model, const std::vector<Features>& ensemble, const Features& reference,
-                          const nlohmann::json& finest_grid) const;
+  void check_time_step();
+  bool converge(const std::string& quantity, const Features& reference, const nlohmann::json& finest,
+                const std::vector<std::function<nlohmann::json(Model&)>>& refinements);
+  NumericsCheck numerics_distance(const std::string& quantity, const std::string& model,
+                                  const std::vector<Features>& ensemble, const Features& reference,
+                                  const nlohmann::json& finest) const;
   void measure();
   const Candidate& hypothesis_candidate(const StatedValue& v) const;
   Candidate joint_candidate(const Hypothesis& h) const;
@@ -1331,7 +1344,7 @@ Diagnosis Diagnoser::run() {
   for (const Hypothesis& h : options_.hypotheses)
     for (const StatedValue& v : h) hypothesis_candidate(v);
   held_ = held_out_rule(recordings_, d_.notes);
-  if (held_.first_recording == 0) {
+  if (held_.first_recording == 0 && up_to(recordings_.front(), held_.split).time.size() >= kMinWindowSamples) {
     search_.set_window(held_.split);
     d_.notes.push_back(fmt::format("profiles: run to t = {:.2f} s and compared there (the fit window)", held_.split));
   }
@@ -1339,6 +1352,7 @@ Diagnosis Diagnoser::run() {
   // noise, each with its own noise realisation.
   run_ensemble("nominal and ensemble");
   check_grid();
+  check_time_step();
   measure();
   test_hypotheses();
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
@@ -1357,11 +1371,11 @@ void Diagnoser::run_ensemble(const std::string& stage) {
 
 // Numerics before physics: a contact grid too coarse for the motion would pass its
 // discretisation error off as missing physics. One run on the finest grid affordable (same
-// noise seed) is compared with the model's ensemble as a recording would be; beyond the 99 %
-// quantile of chi2 it is not one more draw of the model, and the model's grid is refined one
-// step (surface, per_edge 2, 4, 8), its ensemble rerun and compared again. Against the finest,
-// not the next step: on case10 of the case set one step from the corners to 2 per edge moved
-// the features by 38 (limit 100) while 8 per edge moved them by 978 (docs/diagnose.md).
+// noise seed) is compared with the model's ensemble as a recording would be; beyond chi2's
+// mean it is not one more draw of the model, and the model's grid is refined one step
+// (surface, per_edge 2, 4, 8), its ensemble rerun and compared again (converge). Against the
+// finest, not the next step: on case10 of the case set one step from the corners to 2 per edge
+// moved the features by 38 (limit 100) while 8 per edge moved them by 978 (docs/diagnose.md).
 // Then the same at the softest contact the stiffness profiles reach: a stiff contact rocks
 // alike on any grid, a soft one (or an inset edge) does not, so a grid converged for the
 // model as given need not be for the candidates that act through the contact (study 18);
@@ -1382,15 +1396,10 @@ void Diagnoser::check_grid() {
                                    "checked", finest_grid.dump()));
     return;
   }
-  for (int per_edge = 2; per_edge <= kFinestPerEdge; per_edge *= 2) {
-    GridCheck check = grid_distance("as given", ensemble_runs_, reference, finest_grid);
-    if (check.adopted) check.grid = set_grid(base_, stated_grid_, per_edge).dump();
-    d_.grid_checks.push_back(check);
-    if (!check.adopted) break;
-    run_ensemble(fmt::format("nominal and ensemble, contact grid {}", check.grid));
-    if (per_edge == kFinestPerEdge) return;
-  }
-  check_soft_grid(finest_grid);
+  std::vector<std::function<json(Model&)>> refinements;
+  for (int per_edge = 2; per_edge <= kFinestPerEdge; per_edge *= 2)
+    refinements.push_back([this, per_edge](Model& m) { return set_grid(m, stated_grid_, per_edge); });
+  if (converge("contact grid", reference, finest_grid, refinements)) check_soft_grid(finest_grid);
 }
 
 // The model with every contact stiffness at the softest point its quick profile reaches.
@@ -1416,23 +1425,63 @@ void Diagnoser::check_soft_grid(const json& finest_grid) {
   }
   const std::vector<Features> ensemble = search_.run(
       ensemble_jobs(soft, recordings_, options_.ensemble, options_.table_gain_sd), "numerics: soft contacts, ensemble");
-  GridCheck check = grid_distance(model, ensemble, reference, finest_grid);
-  if (check.adopted) check.grid = set_grid(base_, stated_grid_, kFinestPerEdge).dump();
-  d_.grid_checks.push_back(check);
-  if (check.adopted) run_ensemble(fmt::format("nominal and ensemble, contact grid {}", check.grid));
+  NumericsCheck check = numerics_distance("contact grid", model, ensemble, reference, finest_grid);
+  if (check.adopted) check.setting = set_grid(base_, stated_grid_, kFinestPerEdge).dump();
+  d_.numerics_checks.push_back(check);
+  if (check.adopted) run_ensemble(fmt::format("nominal and ensemble, contact grid {}", check.setting));
 }
 
-// A finest-grid run (`reference`) against an ensemble, as a recording would be compared.
-GridCheck Diagnoser::grid_distance(const std::string& model, const std::vector<Features>& ensemble,
-                                   const Features& reference, const json& finest_grid) const {
-  GridCheck check;
+// Numerics before physics, the time step, as the grid: an impact resolved in too few steps
+// loses or gains energy the search would read as restitution or stiffness (case08, no effect:
+// 66.8 at the scenario's step, 52.0 at a quarter of it; study 28). One run at a quarter of the
+// model's step against its ensemble; beyond chi2's mean the step is halved, the ensemble rerun
+// and compared again, down to the quarter. A step the fix chooses ("auto") is not checked.
+void Diagnoser::check_time_step() {
+  const json step = base_.front().value("simulation", json::object()).value("time_step", json("auto"));
+  if (!step.is_number()) return;
+  const double given = step.get<double>();
+  Model finest = base_;
+  const json finest_step = set_time_step(finest, given / kFinestStepDivisor);
+  const Features reference = search_.evaluate({finest}, "numerics: finest time step").front().front();
+  if (Target::failed(reference)) {
+    d_.notes.push_back(fmt::format("numerics: the finest time step {} s did not run; the step is not checked",
+                                   finest_step.dump()));
+    return;
+  }
+  std::vector<std::function<json(Model&)>> refinements;
+  for (int divisor = 2; divisor <= kFinestStepDivisor; divisor *= 2)
+    refinements.push_back([given, divisor](Model& m) { return set_time_step(m, given / divisor); });
+  converge("time step", reference, finest_step, refinements);
+}
+
+// The model as given against its finest setting's run (`reference`): while the run is not one
+// more draw of its ensemble, the next of `refinements` is adopted and the ensemble rerun.
+// Whether the model ended converged short of the last refinement (then it was not adopted).
+bool Diagnoser::converge(const std::string& quantity, const Features& reference, const json& finest,
+                         const std::vector<std::function<json(Model&)>>& refinements) {
+  for (const auto& refine : refinements) {
+    NumericsCheck check = numerics_distance(quantity, "as given", ensemble_runs_, reference, finest);
+    if (check.adopted) check.setting = refine(base_).dump();
+    d_.numerics_checks.push_back(check);
+    if (!check.adopted) return true;
+    run_ensemble(fmt::format("nominal and ensemble, {} {}", quantity, check.setting));
+  }
+  return false;
+}
+
+// A finest setting's run (`reference`) against an ensemble, as a recording would be compared.
+NumericsCheck Diagnoser::numerics_distance(const std::string& quantity, const std::string& model,
+                                           const std::vector<Features>& ensemble, const Features& reference,
+                                           const json& finest) const {
+  NumericsCheck check;
+  check.quantity = quantity;
   check.model = model;
-  check.reference = finest_grid.dump();
+  check.reference = finest.dump();
   const Target scale = make_target(recordings_, {ensemble}, search_, HeldOutRule{}).with_recorded(reference);
   check.distance = scale.ensemble_chi2(members_of(ensemble, recordings_.size()));
-  // The limit is chi2's mean for that many features, not a high quantile: a grid kept too coarse
-  // biases every test the search makes (a bias of 10 decides one; the 99 % quantile lets 25 pass
-  // for 47 features), a grid refined for nothing only costs time. Converged grids read well
+  // The limit is chi2's mean for that many features, not a high quantile: a setting kept too
+  // coarse biases every test the search makes (a bias of 10 decides one; the 99 % quantile lets
+  // 25 pass for 47 features), one refined for nothing only costs time. Converged grids read well
   // below it (study 27).
   check.limit = static_cast<double>(scale.recorded.size());
   check.adopted = check.distance > check.limit;
@@ -2097,6 +2146,8 @@ json Diagnoser::improved_scenario() {
   const json& ran = base_.front()["bodies"];  // the nominal's bodies, in its order, with the grid check's grid
   for (std::size_t i = 0; i < ran.size(); ++i)
     if (ran[i].contains("nodes")) improved["bodies"][i]["nodes"] = ran[i]["nodes"];
+  const json simulation = base_.front().value("simulation", json::object());  // with the time step check's step
+  if (simulation.contains("time_step")) improved["simulation"]["time_step"] = simulation["time_step"];
   for (const Effect& e : d_.effects) {
     if (e.verdict == "measurement") continue;  // corrects the replayed recording, not the model
     try {

@@ -221,17 +221,18 @@ struct FeatureRow {           // one event feature, recorded and simulated
   bool held_out = false;
 };
 
-struct GridCheck {            // the model's contact grid against the finest one (numerics before physics)
+struct NumericsCheck {         // a numerical setting of the model against its finest affordable one (numerics before physics)
+  std::string quantity;       // "contact grid" or "time step"
   std::string model;          // the model checked: "as given", or its contacts at the softest profiled stiffness
-  std::string reference;      // the finest grid's nodes (JSON)
-  double distance = 0;        // chi2 of the finest grid's run against the model's ensemble (its z, as a recording's)
+  std::string reference;      // the finest setting (JSON: the grid's nodes, or the step in s)
+  double distance = 0;        // chi2 of the finest setting's run against the model's ensemble (its z, as a recording's)
   double limit = 0;           // the mean of chi2(features): beyond it the model was not converged
-  bool adopted = false;       // not converged: the model's grid was refined one step, to `grid`
-  std::string grid;           // the grid adopted (JSON); empty when converged
+  bool adopted = false;       // not converged: the model's setting was refined one step, to `setting`
+  std::string setting;        // the setting adopted (JSON); empty when converged
 };
 
 struct Diagnosis {
-  std::vector<GridCheck> grid_checks;
+  std::vector<NumericsCheck> numerics_checks;  // contact grid, then time step, in the order run
   std::vector<MeasurementIssue> measurement;
   std::vector<TableTracking> table;            // recorded table against the scenario's command, where it differs
   std::vector<Mismatch> mismatches;            // of the model as given, |z| beyond the threshold, in time order

@@ -119,11 +119,11 @@ std::string verdict_text(const Diagnosis& d) {
   for (const TableTracking& k : d.table)
     v += "Measurement: " + k.text + ". The simulations replay the recorded table motion, so the bodies are "
          "compared under what the table did.\n";
-  for (const GridCheck& c : d.grid_checks)
+  for (const NumericsCheck& c : d.numerics_checks)
     if (c.adopted)
-      v += fmt::format("Numerics: the model's contact grid was not converged for the model {} (on the finest grid {} the "
-                       "features moved by {:.0f} against a limit of {:.0f}, chi2's mean); refined to {}.\n", c.model, c.reference,
-                       c.distance, c.limit, c.grid);
+      v += fmt::format("Numerics: the model's {0} was not converged for the model {1} (with the finest {0} {2} the "
+                       "features moved by {3:.0f} against a limit of {4:.0f}, chi2's mean); refined to {5}.\n", c.quantity,
+                       c.model, c.reference, c.distance, c.limit, c.setting);
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
     const Mismatch& first = d.mismatches.front();
@@ -169,10 +169,11 @@ json diagnosis_json(const Diagnosis& d) {
               {"chi2_final", d.chi2_final}, {"closing_members", d.closing_members}, {"chi2_noise_limit_99", d.chi2_noise_limit},
               {"simulations", d.simulations}, {"failed_simulations", d.failed_simulations},
               {"first_failure", d.first_failure}, {"notes", d.notes}, {"improved_scenario", d.improved}};
-  out["grid_checks"] = json::array();
-  for (const GridCheck& c : d.grid_checks)
-    out["grid_checks"].push_back({{"model", c.model}, {"reference", json::parse(c.reference)}, {"distance", c.distance}, {"limit", c.limit},
-                                  {"adopted", c.adopted}, {"grid", c.grid.empty() ? json() : json::parse(c.grid)}});
+  out["numerics_checks"] = json::array();
+  for (const NumericsCheck& c : d.numerics_checks)
+    out["numerics_checks"].push_back({{"quantity", c.quantity}, {"model", c.model}, {"reference", json::parse(c.reference)},
+                                      {"distance", c.distance}, {"limit", c.limit}, {"adopted", c.adopted},
+                                      {"setting", c.setting.empty() ? json() : json::parse(c.setting)}});
   out["measurement_issues"] = json::array();
   for (const MeasurementIssue& m : d.measurement)
     out["measurement_issues"].push_back({{"channel", m.channel}, {"text", m.text}, {"delay", m.delay},

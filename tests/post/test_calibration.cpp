@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -131,6 +132,24 @@ TEST(Calibration, ARunLostOnceIsRunAgainAndAModelThatCannotRunSaysWhy) {
   for (std::size_t k = 0; k < reference.channels.size(); ++k)
     EXPECT_EQ(out[0].channels[k].values, reference.channels[k].values) << reference.channels[k].name;
   EXPECT_NE(errors[1].find("stiffness"), std::string::npos) << errors[1];
+}
+
+// What the per-run callback throws (an analysis refusing a run's record) must reach the caller
+// as an error, not end the process from the worker's thread (std::terminate), and stop the runs
+// not yet started: two workers, four runs, the first handed over throws.
+TEST(Calibration, AnErrorInThePerRunWorkReachesTheCallerAndStopsTheRuns) {
+  test::TempDir dir;
+  const Recording recorded = synthetic_recording(drop_scenario(), dir / "drop", kNoise);
+  const json good = recording_scenario(model(), recorded, "table_motion.csv");
+  std::atomic<int> handed{0};
+  const auto each = [&] {
+    simulate_each({good, good, good, good}, {&recorded, &recorded, &recorded, &recorded}, dir / "runs", 2,
+                  [&](std::size_t, Recording&&, std::exception_ptr) {
+                    if (handed++ == 0) throw InputError("motion analysis: refused");
+                  });
+  };
+  EXPECT_THROW(each(), InputError);
+  EXPECT_LE(handed.load(), 2);  // the run under way on the other worker at most, none started after
 }
 
 // Replayed at the true parameters, the recorded table acceleration reproduces
