@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 
+#include "calibration.h"
 #include "diagnosis.h"
 #include "diagnosis_report.h"
 #include "diagnosis_verdict.h"
@@ -214,6 +215,32 @@ TEST(DiagnosisCatalogue, SimilarSignaturesAreSymmetricAndBodyCandidatesMeetOnThe
   EXPECT_TRUE(diagnosis::of_similar_signature(candidate("edge_inset", "pedestal"),
                                               candidate("interface_compliance", "pedestal/tower")));
   EXPECT_FALSE(diagnosis::of_similar_signature(candidate("sensor_delay", "tower"), com));  // no catalogue entry
+}
+
+// A stiffer contact rings faster (omega ~ sqrt(k)), so the stiffness candidate carries a step
+// shrunk by sqrt(k_before / k): the model's step is put at half the critical one (2e-3 of the
+// fix's 3.9e-3 s), where ten times the stiffness is refused by the fix itself (the independent
+// reference: its critical step), and the candidate's document must run; a softer contact keeps
+// the step (only ever finer, never coarser, than the model's).
+TEST(DiagnosisCatalogue, AStifferContactCarriesAStepItsCriticalStepAllows) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["simulation"]["duration"] = 0.3;
+  const Recording recording = rocking_recording(truth, dir, 3);
+  json document = recording_scenario(model(0.3), recording, "table_motion.csv");
+  document["simulation"]["time_step"] = 2e-3;
+  const std::vector<diagnosis::Candidate> all = diagnosis::candidates_for(document, recording, 0, nullptr);
+  const auto k = std::find_if(all.begin(), all.end(), [](const diagnosis::Candidate& c) { return c.entry == "contact_stiffness"; });
+  ASSERT_NE(k, all.end());
+  json stiff = document, unscaled = document, soft = document;
+  k->apply(stiff, 10 * kStiffness);
+  EXPECT_NEAR(stiff["simulation"]["time_step"].get<double>(), 2e-3 / std::sqrt(10.0), 1e-12);
+  unscaled = stiff;
+  unscaled["simulation"]["time_step"] = 2e-3;
+  EXPECT_THROW(simulate_recording(unscaled, recording, dir / "unscaled"), std::exception);
+  EXPECT_NO_THROW(simulate_recording(stiff, recording, dir / "stiff"));
+  k->apply(soft, kStiffness / 10);
+  EXPECT_EQ(soft["simulation"]["time_step"], 2e-3);
 }
 
 // The centre of mass 12 mm off the axis toward the pivot edge (of b = 100 mm):
