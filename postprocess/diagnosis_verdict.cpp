@@ -110,6 +110,26 @@ std::string closing_words(const Diagnosis& d) {
   return v + "\n";
 }
 
+// One line per quantity and model refined: each check's distance from the setting it was made on
+// (the model's own first; the last one converged or the finest adopted), and the setting adopted.
+std::string numerics_words(const std::vector<NumericsCheck>& checks) {
+  std::string v;
+  for (std::size_t i = 0, end = 0; i < checks.size(); i = end) {
+    const NumericsCheck& first = checks[i];
+    std::vector<std::string> moved;
+    std::string on = "the model's", adopted;
+    for (end = i; end < checks.size() && checks[end].quantity == first.quantity && checks[end].model == first.model; ++end) {
+      moved.push_back(fmt::format("by {:.0f} from {}", checks[end].distance, on));
+      if (checks[end].adopted) on = adopted = checks[end].setting;
+    }
+    if (!adopted.empty())
+      v += fmt::format("Numerics: the model's {0} was not converged for the model {1}: the finest {0}, {2}, moved the "
+                       "features {3} (limit {4:.0f}, chi2's mean); refined to {5}.\n", first.quantity, first.model,
+                       first.reference, fmt::join(moved, ", "), first.limit, adopted);
+  }
+  return v;
+}
+
 }  // namespace
 
 // The verdict: measurement and numerics first, then where the model as given mismatched,
@@ -119,11 +139,7 @@ std::string verdict_text(const Diagnosis& d) {
   for (const TableTracking& k : d.table)
     v += "Measurement: " + k.text + ". The simulations replay the recorded table motion, so the bodies are "
          "compared under what the table did.\n";
-  for (const NumericsCheck& c : d.numerics_checks)
-    if (c.adopted)
-      v += fmt::format("Numerics: the model's {0} was not converged for the model {1} (with the finest {0} {2} the "
-                       "features moved by {3:.0f} against a limit of {4:.0f}, chi2's mean); refined to {5}.\n", c.quantity,
-                       c.model, c.reference, c.distance, c.limit, c.setting);
+  v += numerics_words(d.numerics_checks);
   for (const MeasurementIssue& m : d.measurement) v += "Measurement: " + m.text + " (corrected for in the comparison).\n";
   if (!d.mismatches.empty()) {
     const Mismatch& first = d.mismatches.front();

@@ -77,5 +77,29 @@ TEST(DiagnosisVerdict, SaysHowManySimulationsFailedAndWhy) {
   EXPECT_EQ(j["first_failure"], d.first_failure);
 }
 
+// A grid refined in three steps is one line with the three distances, each from the setting it
+// was measured on; a check that converged at once says nothing; the JSON keeps every check.
+TEST(DiagnosisVerdict, SaysOnceHowFarEachSettingWasFromTheFinest) {
+  Diagnosis d;
+  d.feature_count = 47, d.chi2_final = 40, d.chi2_noise_limit = 72.5;
+  const std::string finest = R"({"layout":"surface","per_edge":8})";
+  const auto check = [&](const char* quantity, const std::string& reference, double distance, const std::string& setting) {
+    return NumericsCheck{quantity, "as given", reference, distance, 47, !setting.empty(), setting};
+  };
+  d.numerics_checks = {check("contact grid", finest, 491, R"({"layout":"surface","per_edge":2})"),
+                       check("contact grid", finest, 396, R"({"layout":"surface","per_edge":4})"),
+                       check("contact grid", finest, 30, ""), check("time step", "1.25e-05", 12, "")};
+  const std::string v = verdict_text(d);
+  EXPECT_NE(v.find("Numerics: the model's contact grid was not converged for the model as given: the finest contact "
+                   "grid, " + finest + ", moved the features by 491 from the model's, by 396 from "
+                   R"({"layout":"surface","per_edge":2}, by 30 from {"layout":"surface","per_edge":4} (limit 47, chi2's )"
+                   R"(mean); refined to {"layout":"surface","per_edge":4}.)"), std::string::npos) << v;
+  EXPECT_EQ(v.find("time step"), std::string::npos) << v;
+  const nlohmann::json j = diagnosis_json(d);
+  ASSERT_EQ(j["numerics_checks"].size(), 4u);
+  EXPECT_EQ(j["numerics_checks"][3]["quantity"], "time step");
+  EXPECT_EQ(j["numerics_checks"][1]["setting"]["per_edge"], 4);
+}
+
 }  // namespace
 }  // namespace freestand::diagnosis
