@@ -1438,7 +1438,10 @@ void Diagnoser::check_soft_grid(const json& finest_grid) {
 // and compared again, down to the quarter. A step the fix chooses ("auto") is not checked.
 void Diagnoser::check_time_step() {
   const json step = base_.front().value("simulation", json::object()).value("time_step", json("auto"));
-  if (!step.is_number()) return;
+  if (!step.is_number()) {
+    d_.notes.push_back("numerics: the time step is the fix's own (\"auto\", its accurate step); not checked");
+    return;
+  }
   const double given = step.get<double>();
   Model finest = base_;
   const json finest_step = set_time_step(finest, given / kFinestStepDivisor);
