@@ -305,8 +305,11 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     // and at least the ratio's own from the gains of the two channels it divides (gain_sd): with
     // the noise alone, case14's pedestal (0.819 carried, 0 in the model as given) read z = 1378,
     // and any candidate that moved that one feature a little outranked the rest (study 25).
+    // Only of a body on the table: one on another body rides that body's carry (counted once,
+    // there), and its own added a whole-record feature that moved the held-out split before the
+    // tower benchmark's evidence (study 28).
     if (const std::vector<double>* travel = r.table_channel('d', 'x');
-        travel && !body.motion.channels[analysis::kUplift].empty()) {
+        travel && body.supported_by == "table" && !body.motion.channels[analysis::kUplift].empty()) {
       const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[analysis::kUplift], {travel},
                                          at_rest(body.motion.time, s.modes), p.length_noise, kMinCarryRest);
       const double carry = fit.slope(1), sd = fit.sd(1);

@@ -806,6 +806,22 @@ TEST(DiagnosisFeatures, ReadsARestingBodysCarryByTheTableApartFromADrift) {
   }
 }
 
+// A small block standing on the block rides the block's carry by the table: the carry is a
+// feature once, of the body on the table, not again of the body on top (on the tower benchmark
+// the top body's own moved the held-out split; study 28).
+TEST(DiagnosisFeatures, CountsTheCarryByTheTableOnceOnTheBodyOnTheTable) {
+  test::TempDir dir;
+  json truth = standing_on(pulses_table(dir, "carry", {{0.2, 1.0, 2.5}, {1.5, -1.0, 2.5}}, 3.0), 3.0);
+  truth["bodies"].push_back({{"name", "top"}, {"shape", "box"}, {"half_extents", {0.05, 0.05, 0.1}}, {"mass", 5.0},
+                             {"supported_by", "block"}, {"nodes", {{"layout", "vertices"}}}});
+  truth["interfaces"].push_back({{"lower", "block"}, {"upper", "top"}, {"mu", kMu}, {"restitution", 0.3}});
+  const Recording r = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 52});
+  const diagnosis::Features f = diagnosis::event_features(r, r.nominal);
+  EXPECT_TRUE(f.count("top.uplift.peak_max"));  // the top body is analysed ...
+  EXPECT_FALSE(f.count("top.uplift.table_carry"));  // ... but its carry is the block's
+  EXPECT_TRUE(f.count("block.uplift.table_carry"));
+}
+
 // Slips are the same event when they overlap, one to one, nearest onsets first: an extra
 // short slip, or one split in two by a pause, renumbers none of the others.
 TEST(DiagnosisFeatures, MatchesSlipsByTimeNotByOrder) {
