@@ -25,6 +25,7 @@
 #include "freestand/body_contact.h"
 #include "freestand/contact_time_step.h"
 #include "freestand/input_error.h"
+#include "freestand/scene_time_step.h"
 #include "modify.h"
 #include "pair.h"
 #include "pair_convex.h"
@@ -41,24 +42,6 @@ void note(LAMMPS *lmp, const std::string &text) {
   if (lmp->comm->me != 0) return;
   if (lmp->screen) fprintf(lmp->screen, "fix rigid/convex: %s\n", text.c_str());
   if (lmp->logfile) fprintf(lmp->logfile, "fix rigid/convex: %s\n", text.c_str());
-}
-
-// `tangential_damping VALUE|normal`, read ahead of parse(): the damping ratio
-// zeta_t of every interface's tangential dashpot, or "normal" (the default)
-// for zeta_t = the interface's own normal zeta. Returns -2 for "normal".
-double tangential_damping_keyword(int narg, char **arg, Error *error) {
-  double value = -2.0;
-  for (int i = 3; i + 1 < narg; i += 2) {
-    if (std::strcmp(arg[i], "tangential_damping") != 0) continue;
-    if (std::strcmp(arg[i + 1], "normal") == 0) {
-      value = -2.0;
-    } else {
-      value = freestand::parse_number(error, "fix rigid/convex", "tangential_damping", arg[i + 1]);
-      if (value < 0.0)
-        error->all(FLERR, "fix rigid/convex: tangential_damping must be >= 0 or 'normal'");
-    }
-  }
-  return value;
 }
 
 }  // namespace
@@ -83,26 +66,9 @@ FixRigidConvex::FixRigidConvex(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, nar
   parse(narg, arg, scene_file, defaults);
   try {
     scene_ = freestand::read_scene_file(scene_file, defaults);
-    // Tangential dashpot (docs/fix_rigid_convex.md, "Housner's limit"): with
-    // zeta_t = zeta the tangential force of an impact rises and decays with the
-    // normal one instead of lagging behind it through the undamped spring.
-    const double tangential_damping = tangential_damping_keyword(narg, arg, error);
-    auto tangential_ratio = [&](const freestand::ContactParams &contact) {
-      return tangential_damping >= 0.0 ? tangential_damping
-                                       : freestand::ContactLaw(contact).damping_ratio();
-    };
-    for (auto &interface : scene_.interfaces)
-      interface.contact.tangential_damping_ratio = tangential_ratio(interface.contact);
-    for (const auto &interface : scene_.interfaces)
-      laws_.push_back(std::make_unique<freestand::ContactLaw>(interface.contact));
-    // Bodies that touch without a stated interface (neighbours in a wall,
-    // the sides of a statue and its pedestal) use the fix's defaults.
-    freestand::ContactParams fallback;
-    fallback.stiffness_per_area = defaults.stiffness_per_area;
-    fallback.restitution = defaults.restitution;
-    fallback.mu_s = fallback.mu_k = defaults.mu;
-    fallback.tangential_damping_ratio = tangential_ratio(fallback);
-    default_law_ = std::make_unique<freestand::ContactLaw>(fallback);
+    // Tangential dashpot (docs/fix_rigid_convex.md, "Housner's limit"): zeta_t = zeta unless
+    // the tangential_damping keyword says otherwise (SceneContactLaws).
+    laws_ = std::make_unique<freestand::SceneContactLaws>(scene_, defaults);
     build_templates();
   } catch (const freestand::InputError &e) {
     error->all(FLERR, (std::string("fix rigid/convex: ") + e.what()).c_str());
@@ -143,28 +109,17 @@ void FixRigidConvex::parse(int narg, char **arg, std::string &scene_file,
     else if (key == "table") table_id_ = value;
     else if (key == "plane") plane_z_ = freestand::parse_number(error, "fix rigid/convex", "plane", value);
     else if (key == "type") atom_type_ = static_cast<int>(freestand::parse_number(error, "fix rigid/convex", "type", value));
-    else if (key == "stiffness") defaults.stiffness_per_area = freestand::parse_number(error, "fix rigid/convex", "stiffness", value);
-    else if (key == "restitution") defaults.restitution = freestand::parse_number(error, "fix rigid/convex", "restitution", value);
-    else if (key == "mu") defaults.mu = freestand::parse_number(error, "fix rigid/convex", "mu", value);
-    else if (key == "law") {
-      defaults.law = value;
-      if (defaults.law != "linear" && defaults.law != "hertz")
-        error->all(FLERR, "fix rigid/convex: law must be linear or hertz");
-    }
-    else if (key == "tangential_damping") continue;  // tangential_damping_keyword()
     else if (key == "timestep") {
       if (std::strcmp(value, "auto") != 0) error->all(FLERR, "fix rigid/convex: timestep takes 'auto'");
       auto_time_step_ = true;
-    }
-    else if (key == "spacing") defaults.nodes.spacing = freestand::parse_number(error, "fix rigid/convex", "spacing", value);
-    else if (key == "layout") {
-      const std::string layout = value;
-      if (layout == "surface") defaults.nodes.layout = freestand::NodeLayout::kSurface;
-      else if (layout == "boundary") defaults.nodes.layout = freestand::NodeLayout::kBoundary;
-      else if (layout == "vertices") defaults.nodes.layout = freestand::NodeLayout::kVertices;
-      else error->all(FLERR, "fix rigid/convex: layout must be surface, boundary or vertices");
     } else {
-      error->all(FLERR, ("fix rigid/convex: unknown keyword '" + key + "'").c_str());
+      bool known = false;  // stiffness, restitution, mu, law, spacing, layout, tangential_damping
+      try {
+        known = freestand::set_scene_default(defaults, key, value);
+      } catch (const freestand::InputError &e) {
+        error->all(FLERR, (std::string("fix rigid/convex: ") + e.what()).c_str());
+      }
+      if (!known) error->all(FLERR, ("fix rigid/convex: unknown keyword '" + key + "'").c_str());
     }
   }
   if (scene_file.empty()) error->all(FLERR, "fix rigid/convex: 'scene FILE' is required");
@@ -179,48 +134,17 @@ void FixRigidConvex::build_templates() {
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const freestand::BodySpec &spec = scene_.bodies[b];
     BodyTemplate t{spec.name, freestand::PreparedMassProperties({spec.mass, spec.inertia}, spec.name)};
-    // At rest the body stands on its base faces' nodes (critical time step);
-    // against the table it can land on any face (a toppled statue).
-    freestand::NodeOptions base = spec.nodes;
-    base.faces = spec.geometry.base_faces();
-    for (const freestand::ContactNode &node : freestand::make_contact_nodes(spec.geometry, base)) {
-      t.base_offset.push_back(node.position - spec.com);
-      t.base_area.push_back(node.area);
-    }
+    // Against the table a body can land on any face (a toppled statue).
     t.table_nodes = freestand::make_plane_contact_nodes(spec.geometry, spec.com, spec.mass, spec.nodes);
     for (std::size_t k = 0; k < t.table_nodes.points(); ++k)
       acting_.resize(std::max<std::size_t>(acting_.size(),
                                            t.table_nodes.first_share[k + 1] - t.table_nodes.first_share[k]));
-    // Every body can land on the table: with its stated interface (below), or
-    // the defaults (a toppled drum of a column has no stated table interface).
-    t.table_law = default_law_.get();
     t.bounding_radius = spec.geometry.bounding_radius(spec.com);
     // Against other bodies every exposed face can touch.
     t.contact_model = std::make_shared<freestand::BodyContactModel>(
         spec.geometry, spec.com, freestand::make_contact_nodes(spec.geometry, spec.nodes));
     t.bounding_radius = std::max(t.bounding_radius, t.contact_model->bounding_radius());
     templates_.push_back(std::move(t));
-  }
-  assign_interface_laws();
-}
-
-// Each stated interface's law to the bodies it joins, in the scene's order of
-// interfaces (a later table interface of a body overrides an earlier one).
-// Names are looked up once: a 1000-block wall has some 2000 interfaces.
-void FixRigidConvex::assign_interface_laws() {
-  std::unordered_map<std::string, int> index_of;
-  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) index_of.emplace(scene_.bodies[b].name, static_cast<int>(b));
-  const auto body = [&](const std::string &name) {
-    const auto found = index_of.find(name);
-    return found == index_of.end() ? -1 : found->second;
-  };
-  for (std::size_t k = 0; k < scene_.interfaces.size(); ++k) {
-    const auto &interface = scene_.interfaces[k];
-    const int lower = body(interface.lower), upper = body(interface.upper);
-    if (upper >= 0 && interface.lower == "table") templates_[upper].table_law = laws_[k].get();
-    if (lower < 0 || upper < 0) continue;
-    templates_[lower].partner_laws.emplace_back(upper, laws_[k].get());
-    if (upper != lower) templates_[upper].partner_laws.emplace_back(lower, laws_[k].get());
   }
 }
 
@@ -288,59 +212,21 @@ void FixRigidConvex::init() {
 // The run's dt against the stability limit of each body resting on its base,
 // and the accuracy fraction of it (docs/contact-law.md).
 void FixRigidConvex::check_time_step() {
-  double limit = 1e300, recommended = 1e300;
-  const freestand::ContactLaw *law = nullptr;
-  // One resting contact: the modes of body `upper` on its base nodes against
-  // the table (lower < 0) or against the body it stands on.
-  auto consider = [&](int upper, int lower, const freestand::ContactLaw &contact) {
-    const BodyTemplate &t = templates_[upper];
-    if (t.base_offset.empty()) return;
-    const freestand::ContactBody a{t.mass.mass(), t.mass.inertia(), Vector3d::Zero()};
-    double area = 0.0;
-    for (double x : t.base_area) area += x;
-    // Linearised at the overlap under the body's own weight (Hertz stiffens
-    // with overlap; the linear law does not care).
-    const double overlap = contact.overlap_under_load(area, t.mass.mass() * scene_.gravity);
-    freestand::ContactModes modes;
-    if (lower < 0) {
-      modes = freestand::resting_critical_time_step(contact, t.base_offset, t.base_area,
-                                                    Vector3d::UnitZ(), overlap, a);
-    } else {
-      const freestand::BodySpec &up = scene_.bodies[upper], &down = scene_.bodies[lower];
-      const Vector3d offset = (down.position + down.orientation * down.com) -
-                              (up.position + up.orientation * up.com);
-      const freestand::ContactBody b{templates_[lower].mass.mass(), templates_[lower].mass.inertia(),
-                                     offset};
-      modes = freestand::resting_critical_time_step(contact, t.base_offset, t.base_area,
-                                                    Vector3d::UnitZ(), overlap, a, &b);
-    }
-    if (modes.time_step < limit) law = &contact;
-    limit = std::min(limit, modes.time_step);
-    recommended = std::min(recommended,
-                           modes.time_step * freestand::recommended_time_step_fraction(contact));
-  };
   try {
-    for (std::size_t b = 0; b < templates_.size(); ++b) {
-      const std::string &support = scene_.bodies[b].supported_by;
-      int lower = -1;
-      for (std::size_t k = 0; k < scene_.bodies.size(); ++k)
-        if (scene_.bodies[k].name == support) lower = static_cast<int>(k);
-      consider(static_cast<int>(b), lower,
-               lower < 0 ? *templates_[b].table_law : law_between(static_cast<int>(b), lower));
-    }
-    if (!law) return;
+    const freestand::SceneTimeStep step = freestand::resting_time_step(scene_, *laws_);
+    if (!step.law) return;
     // timestep auto: half the critical step (set before anything integrates
     // with it). With corner nodes and e = 0.05 free rocking is within 0.4 %
     // of Housner even at the critical step (docs/benchmarks.md, time to
     // accuracy); the factor 2 is margin for stacks and impacts the resting
     // eigenproblem does not see.
-    if (auto_time_step_) update->dt = kAutoTimeStepFraction * limit;
+    if (auto_time_step_) update->dt = kAutoTimeStepFraction * step.critical;
     char text[256];
     snprintf(text, sizeof(text), "critical time step %.3g s; accurate restitution needs %.3g s or "
-             "less; timestep is %.3g s%s", limit, recommended, update->dt,
+             "less; timestep is %.3g s%s", step.critical, step.recommended, update->dt,
              auto_time_step_ ? " (timestep auto)" : "");
     note(lmp, text);
-    freestand::check_time_step(*law, update->dt, limit, "fix rigid/convex");
+    freestand::check_time_step(*step.law, update->dt, step.critical, "fix rigid/convex");
   } catch (const freestand::InputError &e) {
     error->all(FLERR, e.what());
   }
@@ -388,14 +274,6 @@ void FixRigidConvex::unpack_comm(int n, int first, double *buf) {
   }
 }
 
-// Called per contact pair and step: a scan of the few stated partners of
-// one body (resolved once in build_templates), not of the scene's names.
-const freestand::ContactLaw &FixRigidConvex::law_between(int body_a, int body_b) const {
-  for (const auto &partner : templates_[body_a].partner_laws)
-    if (partner.first == body_b) return *partner.second;
-  return *default_law_;
-}
-
 double FixRigidConvex::largest_radius() const {
   double largest = 0.0;
   for (const BodyTemplate &t : templates_) largest = std::max(largest, t.bounding_radius);
@@ -434,7 +312,7 @@ void FixRigidConvex::post_force(int) {
   table_elastic_ = 0.0;
   for (int i = 0; i < atom->nlocal; ++i) {
     state_[i].table_force = state_[i].table_torque = Vector3d::Zero();
-    if (state_[i].body >= 0 && templates_[state_[i].body].table_law) table_contact(i);
+    if (state_[i].body >= 0) table_contact(i);
   }
 }
 
@@ -489,7 +367,7 @@ void FixRigidConvex::table_contact(int i) {
       const int share = acting_[a];
       freestand::ContactPoint contact{table.normal, overlap, v + w.cross(r) - table_velocity,
                                       nodes.area[share], nodes.dashpot_mass[share]};
-      const freestand::ContactForce result = t.table_law->compute(contact, dt, s.table_history[share]);
+      const freestand::ContactForce result = laws_->table(s.body).compute(contact, dt, s.table_history[share]);
       force += result.force;
       torque += r.cross(result.force);
       ++table_contacts_;

@@ -22,6 +22,7 @@ FixStyle(rigid/convex,FixRigidConvex)
 #include "freestand/plane_contact_nodes.h"
 #include "freestand/rigid_body.h"
 #include "freestand/scene.h"
+#include "freestand/scene_contact_laws.h"
 #include "rigid_body_source.h"
 
 namespace freestand { class BodyContactModel; }
@@ -86,7 +87,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   double mass_of(int body) const { return templates_[body].mass.mass(); }
   double largest_radius() const;
   // The law between two bodies: their interface, or the fix's defaults.
-  const freestand::ContactLaw &law_between(int body_a, int body_b) const;
+  const freestand::ContactLaw &law_between(int body_a, int body_b) const { return laws_->between(body_a, body_b); }
   // Histories of local atom i with `partner`, created empty when new.
   PairHistory &pair_history(int i, tagint partner);
   // pair convex reports each body's body-on-body resultant of the step.
@@ -107,14 +108,9 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   struct BodyTemplate {
     std::string name;                              // from the scene
     freestand::PreparedMassProperties mass;        // mass and inertia about the COM
-    std::vector<Eigen::Vector3d> base_offset;      // base-face nodes from the COM, body frame (m):
-    std::vector<double> base_area;                 //   the body at rest, for the critical time step
     freestand::PlaneContactNodes table_nodes;      // every face's nodes against the table plane
-    const freestand::ContactLaw *table_law;        // contact with the table, or null
     double bounding_radius;                        // atom radius: farthest point from the COM (m)
     std::shared_ptr<freestand::BodyContactModel> contact_model;  // all faces' nodes, for pair convex
-    std::vector<std::pair<int, const freestand::ContactLaw *>> partner_laws;  // stated interfaces
-                                                   // with other bodies (body index, law)
   };
   // Per local atom: the body it is and its rotational state (hot data).
   struct BodyState {
@@ -131,7 +127,6 @@ class FixRigidConvex : public Fix, public RigidBodySource {
 
   void parse(int narg, char **arg, std::string &scene_file, freestand::SceneDefaults &defaults);
   void build_templates();
-  void assign_interface_laws();
   void create_bodies();
   void check_time_step();
   void table_contact(int i);
@@ -144,8 +139,7 @@ class FixRigidConvex : public Fix, public RigidBodySource {
   TablePlane table_plane() const;
 
   freestand::Scene scene_;                          // as read, with defaults applied
-  std::vector<std::unique_ptr<freestand::ContactLaw>> laws_;  // one per scene interface
-  std::unique_ptr<freestand::ContactLaw> default_law_;        // bodies without an interface
+  std::unique_ptr<freestand::SceneContactLaws> laws_;  // every contact's law: interfaces, defaults
   std::vector<BodyTemplate> templates_;             // one per scene body
   std::vector<BodyState> state_;                    // per local atom (size nmax)
   std::vector<int> acting_;                         // scratch: acting shares of one table node

@@ -319,6 +319,25 @@ Features event_features(const Recording& recording, const json& analysis_nominal
   return out;
 }
 
+// The share of its critical step a scenario's numeric time step is (0 for "auto" or a scene
+// without a base: nothing to keep).
+double step_share(const json& document) {
+  const json step = document.value("simulation", json::object()).value("time_step", json());
+  if (!step.is_number()) return 0.0;
+  const double critical = critical_time_step({"diagnose: scenario", document, {}});
+  return critical > 0 ? step.get<double>() / critical : 0.0;
+}
+
+// A variant of the model with a stiffer or more damped contact rings faster than the model: at
+// the model's step fix rigid/convex may refuse it (a failed run counts as not fitting, and the
+// rungs of a stiffness ladder or restitution's low end were lost so: study 29) or resolve its
+// impacts more coarsely than the model's. Its step is set to the model's share of its critical
+// step; a variant the model's step allows runs at that step, unchanged.
+void keep_step_share(json& document, double share) {
+  if (!(share > 0) || !(step_share(document) > share * (1 + 1e-9))) return;
+  document["simulation"]["time_step"] = share * critical_time_step({"diagnose: scenario", document, {}});
+}
+
 namespace {
 
 // ------------------------------------------------------------------ measurement
@@ -615,6 +634,7 @@ class Search {
     std::vector<const Recording*> recs;
     for (const Job& job : jobs) {
       models.push_back(job.document), recs.push_back(&recordings_[job.recording]);
+      keep_step_share(models.back(), step_share_);
       // A few samples past the window's end: the run's last one may fall short of it.
       if (job.window_only)
         models.back()["simulation"]["duration"] = window_end_ - recordings_[job.recording].time.front() + kWindowMargin;
@@ -724,6 +744,10 @@ class Search {
   int failed_runs = 0;        // runs that failed twice (simulate_each runs a failed one again)
   std::string first_failure;  // the first one's error
 
+  // From now on every run keeps `model`'s share of its critical step (keep_step_share).
+  void keep_step_share_of(const json& model) { step_share_ = step_share(model); }
+  double kept_step_share() const { return step_share_; }
+
  private:
   const std::vector<Recording>& recordings_;
   const Options& options_;
@@ -732,6 +756,7 @@ class Search {
   double window_end_ = signal::kNaN;  // s, the profiles' window's end (NaN: profiles run whole)
   std::vector<Recording> windows_;    // the recordings cut there
   std::vector<SlipReference> slip_references_;  // the slips of each recording as given, which every run's are matched to
+  double step_share_ = 0.0;           // the model's time step over its critical step (0: steps as given)
 };
 
 double to_value(const Candidate& c, double u) {
@@ -1353,9 +1378,11 @@ Diagnosis Diagnoser::run() {
   }
   // 1. Nominal run (seed 1) and the ensemble: initial tilt and spin perturbed by the angle
   // noise, each with its own noise realisation.
+  search_.keep_step_share_of(base_.front());
   run_ensemble("nominal and ensemble");
   check_grid();
   check_time_step();
+  search_.keep_step_share_of(base_.front());  // the step the check adopted
   measure();
   test_hypotheses();
   // 3. Candidates: quick profile of each, the best refined, accepted when significant.
@@ -2163,6 +2190,7 @@ json Diagnoser::improved_scenario() {
       d_.notes.push_back(fmt::format("{} is not written into the improved scenario: {}", e.fit.candidate.name, error.what()));
     }
   }
+  keep_step_share(improved, search_.kept_step_share());  // the step its runs had
   return improved;
 }
 

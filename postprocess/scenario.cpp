@@ -8,9 +8,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "freestand/shake_table.h"
+#include "freestand/contact_time_step.h"
 #include "freestand/input_error.h"
 #include "freestand/scene.h"
+#include "freestand/scene_contact_laws.h"
+#include "freestand/scene_time_step.h"
+#include "freestand/shake_table.h"
 
 namespace freestand {
 
@@ -24,10 +27,6 @@ namespace {
 const char* const kAxisKeys[] = {"units", "format", "column", "differentiate", "scale", "pga", "skip",
                                  "duration", "baseline", "amplitude", "frequency", "frequency_end", "width"};
 const char* const kMotions[] = {"sine", "onesine", "ricker", "rectangle", "sweep"};
-// Keys of `contact`: fix rigid/convex keywords for what the bodies and
-// interfaces leave unstated.
-const char* const kContactKeys[] = {"stiffness", "restitution", "mu", "law", "layout", "spacing",
-                                    "tangential_damping"};
 
 json* child(json& node, const std::string& key, const std::string& assignment) {
   if (node.is_array()) {
@@ -56,6 +55,21 @@ std::string option_value(const json& value, const std::string& where) {
   if (value.is_array() && value.size() == 2 && value[0].is_number() && value[1].is_string())
     return option_value(value[0], where) + " " + option_value(value[1], where);
   fail(where, "expected a number, a string, true/false or [value, \"unit\"]");
+}
+
+// The part of a scenario fix rigid/convex reads as its scene file.
+json scene_document(const json& scenario) {
+  json scene = json::object();
+  for (const char* key : {"bodies", "interfaces", "gravity"})
+    if (scenario.contains(key)) scene[key] = scenario[key];
+  return scene;
+}
+
+// The fix's own check (it would refuse the step), made before LIGGGHTS starts.
+void check_scene_time_step(const Scene& scene, const SceneDefaults& defaults, double dt, const std::string& where) {
+  const SceneContactLaws laws(scene, defaults);
+  const SceneTimeStep step = resting_time_step(scene, laws);
+  if (step.law) check_time_step(*step.law, dt, step.critical, where);
 }
 
 std::string resolve_path(const Scenario& scenario, const std::string& path) {
@@ -201,6 +215,33 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
   return scenario;
 }
 
+SceneDefaults contact_defaults(const Scenario& scenario) {
+  SceneDefaults defaults;
+  const json contact = scenario.document.value("contact", json::object());
+  if (!contact.is_object()) fail(scenario.path + ": contact", "expected an object (see docs/scenario.md)");
+  for (const auto& [key, value] : contact.items()) {
+    const std::string where = scenario.path + ": contact." + key;
+    bool known = false;
+    try {
+      known = set_scene_default(defaults, key, option_value(value, where));
+    } catch (const InputError& e) {
+      fail(scenario.path + ": contact", e.what());
+    }
+    if (!known) fail(scenario.path + ": contact", "unknown key '" + key + "' (see docs/scenario.md)");
+  }
+  return defaults;
+}
+
+Scene run_scene(const Scenario& scenario) {
+  return parse_scene(scene_document(scenario.document), scenario.path, contact_defaults(scenario));
+}
+
+double critical_time_step(const Scenario& scenario) {
+  const SceneDefaults defaults = contact_defaults(scenario);
+  const Scene scene = parse_scene(scene_document(scenario.document), scenario.path, defaults);
+  return resting_time_step(scene, SceneContactLaws(scene, defaults)).critical;
+}
+
 RunSettings run_settings(const Scenario& scenario) {
   const json& doc = scenario.document;
   const json sim = doc.value("simulation", json::object());
@@ -223,12 +264,14 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
   const json& doc = scenario.document;
   GeneratedRun run;
   run.settings = run_settings(scenario);
-  // The scene: bodies and interfaces (and gravity), checked now so that a
-  // bad body is reported against the scenario file before LIGGGHTS starts.
-  run.scene = json::object();
-  for (const char* key : {"bodies", "interfaces", "gravity"})
-    if (doc.contains(key)) run.scene[key] = doc[key];
-  const Scene scene = parse_scene(run.scene, scenario.path);
+  // The scene (bodies, interfaces, gravity) and the contact defaults, checked now so that a
+  // bad body or a step the contacts cannot take is reported against the scenario file before
+  // LIGGGHTS starts.
+  run.scene = scene_document(doc);
+  const SceneDefaults defaults = contact_defaults(scenario);
+  const Scene scene = parse_scene(run.scene, scenario.path, defaults);
+  if (run.settings.time_step != "auto") check_scene_time_step(scene, defaults, std::stod(run.settings.time_step),
+                                                                 scenario.path + ": simulation.time_step");
 
   const std::string table = table_arguments(scenario),
                     table_height = fmt::format("{}", doc.value("table_height", 0.0));
@@ -238,12 +281,9 @@ GeneratedRun generate_run(const Scenario& scenario, const RunFiles& files) {
     fail(scenario.path, "no simulation.duration, and no recorded table motion to take it from");
 
   std::string contact;
-  const json defaults = doc.value("contact", json::object());
-  for (const auto& [key, value] : defaults.items()) {
-    if (std::find(std::begin(kContactKeys), std::end(kContactKeys), key) == std::end(kContactKeys))
-      fail(scenario.path + ": contact", "unknown key '" + key + "' (see docs/scenario.md)");
+  const json stated = doc.value("contact", json::object());
+  for (const auto& [key, value] : stated.items())
     contact += " " + key + " " + option_value(value, scenario.path + ": contact." + key);
-  }
   Extent e = body_extent(scene);
   for (int k = 0; k < 3; ++k) e.lo[k] -= travel.reach[k], e.hi[k] += travel.reach[k];  // the bodies ride the table
   const double reach = std::max({e.hi[2] - std::min(e.lo[2], 0.0), 1.0});  // room to topple

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "freestand/scene.h"
 #include "freestand/shake_table.h"
 
 namespace freestand {
@@ -34,6 +35,20 @@ void apply_override(nlohmann::json& document, const std::string& assignment);
 // (the same parser and kinematics); nothing for a fixed table. Throws
 // InputError naming the scenario's table_motion when it is wrong.
 std::optional<ShakeTable> commanded_table(const Scenario& scenario);
+
+// What fix rigid/convex assumes where the scene states nothing: the scenario's
+// `contact` block (docs/scenario.md) over SceneDefaults. Throws InputError
+// naming the key at fault.
+SceneDefaults contact_defaults(const Scenario& scenario);
+
+// The scene fix rigid/convex will read: the scenario's bodies, interfaces and
+// gravity, with its contact defaults. Throws InputError naming the field.
+Scene run_scene(const Scenario& scenario);
+
+// The critical time step (s) of the scenario's scene at rest, as fix
+// rigid/convex computes it (freestand/scene_time_step.h); 0 when no body
+// rests on a base.
+double critical_time_step(const Scenario& scenario);
 
 // How to run it, with defaults resolved (docs/scenario.md).
 struct RunSettings {

@@ -371,6 +371,38 @@ Scene read_scene_file(const std::string& path, const SceneDefaults& defaults) {
   return parse_scene(document, path, defaults);
 }
 
+bool set_scene_default(SceneDefaults& defaults, const std::string& key, const std::string& value) {
+  const auto number = [&] {
+    std::size_t end = 0;
+    double x = std::nan("");
+    try {
+      x = std::stod(value, &end);
+    } catch (const std::exception&) {
+    }
+    if (end != value.size() || !std::isfinite(x)) fail(key, fmt::format("expects a number, got '{}'", value));
+    return x;
+  };
+  if (key == "stiffness") defaults.stiffness_per_area = number();
+  else if (key == "restitution") defaults.restitution = number();
+  else if (key == "mu") defaults.mu = number();
+  else if (key == "spacing") defaults.nodes.spacing = number();
+  else if (key == "law") {
+    if (value != "linear" && value != "hertz") fail(key, "must be linear or hertz");
+    defaults.law = value;
+  } else if (key == "layout") {
+    if (value == "surface") defaults.nodes.layout = NodeLayout::kSurface;
+    else if (value == "boundary") defaults.nodes.layout = NodeLayout::kBoundary;
+    else if (value == "vertices") defaults.nodes.layout = NodeLayout::kVertices;
+    else fail(key, "must be surface, boundary or vertices");
+  } else if (key == "tangential_damping") {
+    defaults.tangential_damping = value == "normal" ? -1.0 : number();
+    if (value != "normal" && defaults.tangential_damping < 0) fail(key, "must be >= 0 or 'normal'");
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const InterfaceSpec* find_interface(const Scene& scene, const std::string& lower,
                                     const std::string& upper) {
   for (const InterfaceSpec& i : scene.interfaces)

@@ -60,7 +60,14 @@ struct SceneDefaults {
   double mu = 0.6;                         // friction when none is stated
   std::string law = "linear";              // normal law when none is stated: "linear" or "hertz"
   NodeOptions nodes;                       // contact nodes when a body states none
+  double tangential_damping = -1.0;        // zeta_t of every law; < 0 ("normal"): each law's own zeta
 };
+
+// Sets the default named by one of fix rigid/convex's keywords (`stiffness`, `restitution`,
+// `mu`, `law`, `spacing`, `layout`, `tangential_damping`; docs/fix_rigid_convex.md) from its
+// text, as the input script or a scenario's `contact` block gives it. Returns false for any
+// other key; throws InputError naming the keyword for a bad value.
+bool set_scene_default(SceneDefaults& defaults, const std::string& key, const std::string& value);
 
 // Parses a scene; `source` names it in error messages (file name).
 // Throws InputError naming the field that is missing, wrong or contradictory.

@@ -112,3 +112,25 @@ TEST(Scenario, MistakesNameTheFileAndField) {
                 .find("broken.json: not valid JSON"),
             std::string::npos);
 }
+
+// fix rigid/convex would refuse a step above the scene's critical one; `freestand run` says so
+// first, naming the scenario's field, from the same computation (a step just below runs).
+TEST(Scenario, AStepTheContactsCannotTakeIsRefusedNamingTheField) {
+  const freestand::test::TempDir dir;
+  json doc = json::parse(kBlock);
+  const std::string path = dir.write("s.json", doc.dump());
+  const double critical = freestand::critical_time_step(freestand::read_scenario(path));
+  ASSERT_GT(critical, 0.0);
+  doc["simulation"]["time_step"] = 1.05 * critical;
+  const std::string above = dir.write("above.json", doc.dump());
+  const std::string message = error_of([&] { freestand::generate_run(freestand::read_scenario(above)); });
+  EXPECT_NE(message.find("above.json: simulation.time_step: timestep"), std::string::npos) << message;
+  EXPECT_NE(message.find("critical time step"), std::string::npos) << message;
+  doc["simulation"]["time_step"] = 0.95 * critical;
+  const std::string below = dir.write("below.json", doc.dump());
+  EXPECT_EQ(error_of([&] { freestand::generate_run(freestand::read_scenario(below)); }), "");
+  doc["contact"] = {{"stiffness", "stiff"}};
+  const std::string bad = dir.write("bad.json", doc.dump());
+  EXPECT_NE(error_of([&] { freestand::generate_run(freestand::read_scenario(bad)); }).find("bad.json: contact: stiffness"),
+            std::string::npos);
+}
