@@ -650,7 +650,7 @@ class Search {
                       failures[i] = failure;
                       out[i][kFailedSimulation] = {};
                       const std::lock_guard<std::mutex> lock(shared_lock);
-                      if (failed_runs++ == 0) first_failure = failure_message(failure);
+                      if (failed_runs++ == 0) first_failure = stage + ": " + failure_message(failure);
                     } else {
                       if (raw && i < raw->size()) (*raw)[i] = sim;
                       out[i] = features_of(std::move(sim), jobs[i]);
@@ -742,7 +742,7 @@ class Search {
 
   int simulations = 0;
   int failed_runs = 0;        // runs that failed twice (simulate_each runs a failed one again)
-  std::string first_failure;  // the first one's error
+  std::string first_failure;  // the first one's stage and error
 
   // From now on every run keeps `model`'s share of its critical step (keep_step_share).
   void keep_step_share_of(const json& model) { step_share_ = step_share(model); }
