@@ -397,6 +397,7 @@ class Evaluator {
     for (const Recording& r : recordings) {
       kinds_.push_back(classify_recording(r));
       bases_.push_back(recording_scenario(model, r, "table_motion.csv"));
+      step_shares_.push_back(step_share(bases_.back()));
     }
   }
 
@@ -414,6 +415,7 @@ class Evaluator {
       for (std::size_t r = 0; r < recordings_.size(); ++r) {
         models.push_back(bases_[r]);
         apply_parameters(models.back(), options_.parameters, values);
+        keep_step_share(models.back(), step_shares_[r]);  // a stiffer point is not refused at the model's step
         runs.push_back(&recordings_[r]);
       }
     }
@@ -425,7 +427,7 @@ class Evaluator {
       for (std::size_t r = 0; r < recordings_.size(); ++r, ++j) {
         std::vector<double> residuals;
         if (!failures[j]) residuals = calibration_residuals(kinds_[r], recordings_[r], simulated[j]);
-        else residuals.assign(residual_counts(r), kFailedResidual * largest_[r]), ++failed_runs;
+        else residuals = failed_residuals(r), ++failed_runs;
         if (residual_counts_.size() <= r) residual_counts_.push_back(residuals.size()), largest_.push_back(1.0);
         if (!failures[j])
           for (double x : residuals) largest_[r] = std::max(largest_[r], std::abs(x));
@@ -441,10 +443,12 @@ class Evaluator {
   int failed_runs = 0;
 
  private:
-  std::size_t residual_counts(std::size_t r) {
+  // A failed run's residuals: as many as recording r's run gave, each far beyond any that ran
+  // (the optimiser keeps away). Before any run of r did, there is nothing to compare with.
+  std::vector<double> failed_residuals(std::size_t r) const {
     if (r >= residual_counts_.size())
       throw InputError(fmt::format("{}: the simulation with the starting values failed", recordings_[r].path));
-    return residual_counts_[r];
+    return std::vector<double>(residual_counts_[r], kFailedResidual * largest_[r]);
   }
 
   const std::vector<Recording>& recordings_;
@@ -452,6 +456,7 @@ class Evaluator {
   std::string directory_;
   std::vector<RecordingKind> kinds_;
   std::vector<json> bases_;
+  std::vector<double> step_shares_;  // per recording: the model's step over its critical step (scenario.h)
   std::vector<std::size_t> residual_counts_;
   std::vector<double> largest_;  // per recording: the largest |residual| of a model that ran (at least 1)
   int batches_ = 0;
@@ -990,7 +995,9 @@ json calibrated_scenario(const json& model, const std::vector<ParameterEstimate>
   std::vector<CalibrationParameter> parameters;
   std::vector<double> values;
   for (const ParameterEstimate& e : fitted) parameters.push_back(e.parameter), values.push_back(e.value);
+  const double share = step_share(document);
   apply_parameters(document, parameters, values);
+  keep_step_share(document, share);
   return document;
 }
 

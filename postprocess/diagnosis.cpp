@@ -319,25 +319,6 @@ Features event_features(const Recording& recording, const json& analysis_nominal
   return out;
 }
 
-// The share of its critical step a scenario's numeric time step is (0 for "auto" or a scene
-// without a base: nothing to keep).
-double step_share(const json& document) {
-  const json step = document.value("simulation", json::object()).value("time_step", json());
-  if (!step.is_number()) return 0.0;
-  const double critical = critical_time_step({"diagnose: scenario", document, {}});
-  return critical > 0 ? step.get<double>() / critical : 0.0;
-}
-
-// A variant of the model with a stiffer or more damped contact rings faster than the model: at
-// the model's step fix rigid/convex may refuse it (a failed run counts as not fitting, and the
-// rungs of a stiffness ladder or restitution's low end were lost so: study 29) or resolve its
-// impacts more coarsely than the model's. Its step is set to the model's share of its critical
-// step; a variant the model's step allows runs at that step, unchanged.
-void keep_step_share(json& document, double share) {
-  if (!(share > 0) || !(step_share(document) > share * (1 + 1e-9))) return;
-  document["simulation"]["time_step"] = share * critical_time_step({"diagnose: scenario", document, {}});
-}
-
 namespace {
 
 // ------------------------------------------------------------------ measurement

@@ -262,13 +262,6 @@ struct Diagnosis {
 // one, the later half of its events is) against `scenario` (a model: its
 // contact and simulation settings; its bodies and interfaces, when stated,
 // must name the recordings' bodies). Throws InputError for bad input.
-// The share of its critical step (freestand/scene_time_step.h) a scenario's numeric time step
-// is; 0 for "auto" or a scene without a base.
-double step_share(const nlohmann::json& document);
-// Sets the document's time step to `share` of its critical step when it is coarser than that
-// (a variant of the model with a stiffer or more damped contact); share <= 0: unchanged.
-void keep_step_share(nlohmann::json& document, double share);
-
 Diagnosis diagnose(const nlohmann::json& scenario, const std::vector<Recording>& recordings, const Options& options);
 
 // The JSON of --json FILE.

@@ -242,6 +242,18 @@ double critical_time_step(const Scenario& scenario) {
   return resting_time_step(scene, SceneContactLaws(scene, defaults)).critical;
 }
 
+double step_share(const json& document) {
+  const json step = document.value("simulation", json::object()).value("time_step", json());
+  if (!step.is_number()) return 0.0;
+  const double critical = critical_time_step({"scenario", document, {}});
+  return critical > 0 ? step.get<double>() / critical : 0.0;
+}
+
+void keep_step_share(json& document, double share) {
+  if (!(share > 0) || !(step_share(document) > share * (1 + 1e-9))) return;
+  document["simulation"]["time_step"] = share * critical_time_step({"scenario", document, {}});
+}
+
 RunSettings run_settings(const Scenario& scenario) {
   const json& doc = scenario.document;
   const json sim = doc.value("simulation", json::object());

@@ -50,6 +50,18 @@ Scene run_scene(const Scenario& scenario);
 // rests on a base.
 double critical_time_step(const Scenario& scenario);
 
+// The share of its critical step a scenario document's numeric time step is;
+// 0 for "auto" or a scene without a base (nothing to keep).
+double step_share(const nlohmann::json& document);
+
+// A variant of a model with a stiffer or more damped contact (a candidate of
+// diagnose, a point of calibrate) rings faster than the model: at the model's
+// step fix rigid/convex may refuse it, or resolve its impacts more coarsely.
+// Sets the document's step to `share` (the model's step_share) of its own
+// critical step when it is coarser than that; a variant the model's step
+// allows keeps it, unchanged. share <= 0: nothing changes.
+void keep_step_share(nlohmann::json& document, double share);
+
 // How to run it, with defaults resolved (docs/scenario.md).
 struct RunSettings {
   double duration = 0.0;        // simulated time (s)

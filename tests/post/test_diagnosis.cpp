@@ -18,6 +18,7 @@
 #include "freestand/input_error.h"
 #include "../reference/housner.h"
 #include "diagnosis_statistics.h"
+#include "scenario.h"
 #include "signal_tools.h"
 #include "synthetic_motion.h"
 #include "synthetic_recording.h"
@@ -231,7 +232,7 @@ TEST(DiagnosisNumerics, AVariantKeepsTheModelsShareOfItsCriticalStep) {
   const Recording recording = rocking_recording(truth, dir, 3);
   json document = recording_scenario(model(0.3), recording, "table_motion.csv");
   document["simulation"]["time_step"] = 2e-3;
-  const double share = diagnosis::step_share(document);
+  const double share = step_share(document);
   EXPECT_GT(share, 0.3);
   EXPECT_LT(share, 0.7);
   const std::vector<diagnosis::Candidate> all = diagnosis::candidates_for(document, recording, 0, nullptr);
@@ -243,11 +244,11 @@ TEST(DiagnosisNumerics, AVariantKeepsTheModelsShareOfItsCriticalStep) {
   json stiff = document, soft = document;
   entry("contact_stiffness").apply(stiff, 10 * kStiffness);
   EXPECT_THROW(simulate_recording(stiff, recording, dir / "stiff_as_given"), std::exception);
-  diagnosis::keep_step_share(stiff, share);
+  keep_step_share(stiff, share);
   EXPECT_NEAR(stiff["simulation"]["time_step"].get<double>(), 2e-3 / std::sqrt(10.0), 1e-9 * 2e-3);
   EXPECT_NO_THROW(simulate_recording(stiff, recording, dir / "stiff"));
   entry("contact_stiffness").apply(soft, kStiffness / 10);
-  diagnosis::keep_step_share(soft, share);
+  keep_step_share(soft, share);
   EXPECT_EQ(soft["simulation"]["time_step"], 2e-3);
 
   // Restitution's low end: heavy damping shortens Verlet's critical step by sqrt(1 + zeta^2) -
@@ -256,7 +257,7 @@ TEST(DiagnosisNumerics, AVariantKeepsTheModelsShareOfItsCriticalStep) {
   json damped = document;
   entry("restitution").apply(damped, 0.02);
   EXPECT_THROW(simulate_recording(damped, recording, dir / "damped_as_given"), std::exception);
-  diagnosis::keep_step_share(damped, diagnosis::step_share(document));
+  keep_step_share(damped, step_share(document));
   EXPECT_LT(damped["simulation"]["time_step"].get<double>(), 0.8 * document["simulation"]["time_step"].get<double>());
   EXPECT_NO_THROW(simulate_recording(damped, recording, dir / "damped"));
 }
