@@ -941,6 +941,7 @@ CalibrationResult calibrate(const json& model, const std::vector<Recording>& rec
                                                        : std::numeric_limits<double>::infinity();
   }
   result.evaluations = search.evaluations;
+  result.failed_runs = evaluator.failed_runs;
   std::vector<double> values;
   for (std::size_t i = 0; i < n; ++i) {
     values.push_back(to_value(params[i], best_u[i]));
@@ -982,6 +983,7 @@ CalibrationResult average_calibrations(const std::vector<CalibrationResult>& fit
   for (const CalibrationResult& f : fits) {
     average.objective += f.objective, average.objective_start += f.objective_start;
     average.residual_count += f.residual_count, average.evaluations += f.evaluations;
+    average.failed_runs += f.failed_runs;
     average.recordings.insert(average.recordings.end(), f.recordings.begin(), f.recordings.end());
   }
   average.model = model;

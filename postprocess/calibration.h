@@ -126,6 +126,7 @@ struct CalibrationResult {
   double objective_start = 0.0, objective = 0.0;  // sum of squared residuals
   int residual_count = 0;
   int evaluations = 0;
+  int failed_runs = 0;           // runs that failed twice; each counted as a far miss of its recording
   Eigen::MatrixXd correlation;   // of the estimates (empty without uncertainty)
   nlohmann::json model;          // the model with the fitted values applied
 };

@@ -66,6 +66,11 @@ void print_estimates(const CalibrationResult& result) {
 void print_quality(const CalibrationResult& result) {
   fmt::print("  fit quality: sum of squared residuals {:.4g} -> {:.4g} ({} residuals, {} evaluations)\n",
              result.objective_start, result.objective, result.residual_count, result.evaluations);
+  if (result.failed_runs > 0)
+    fmt::print("  Caution: {} simulation{} failed, also when run again, and counted as far misses: the fit kept away "
+               "from {} point{}\n",
+               result.failed_runs, result.failed_runs > 1 ? "s" : "", result.failed_runs > 1 ? "their" : "its",
+               result.failed_runs > 1 ? "s" : "");
   for (const RecordingFit& r : result.recordings)
     fmt::print("    {:<40} {:<13} RMS residual {:.4f} -> {:.4f}, variance inflation {:.3g}\n",
                fs::path(r.path).filename().string(), kind_name(r.kind), r.rms_start, r.rms_fitted,
@@ -173,7 +178,8 @@ int calibrate_command(const CalibrateOptions& o) {
       report["configurations"].push_back({{"estimates", estimates_json(fits.back())},
                                           {"recordings", recordings_fit},
                                           {"objective", fits.back().objective},
-                                          {"objective_start", fits.back().objective_start}});
+                                          {"objective_start", fits.back().objective_start},
+                                          {"failed_runs", fits.back().failed_runs}});
     }
     result = fits.size() > 1 ? average_calibrations(fits, scenario.document) : fits.front();
     if (fits.size() > 1) {

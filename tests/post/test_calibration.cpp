@@ -121,6 +121,7 @@ TEST(Calibration, AStifferPointKeepsTheModelsShareOfItsCriticalStep) {
   std::cout << fmt::format("measured: stiffness {:.3g} from 1e8 (truth {:.3g}), objective {:.3g} -> {:.3g}\n",
                            fit.estimates[0].value, kStiffness, fit.objective_start, fit.objective);
   EXPECT_LT(fit.objective, fit.objective_start);
+  EXPECT_EQ(fit.failed_runs, 0);
   EXPECT_LT(std::abs(std::log(fit.estimates[0].value / kStiffness)), std::log(1.5));  // expect_recovered's bound
   const json scenario = calibrated_scenario(coarse, fit.estimates, recordings[0], "table_motion.csv");
   const double k = fit.estimates[0].value, kept = 0.5 * critical * std::sqrt(std::min(1.0, kStiffness / k));
