@@ -250,8 +250,10 @@ double step_share(const json& document) {
 }
 
 void keep_step_share(json& document, double share) {
-  if (!(share > 0) || !(step_share(document) > share * (1 + 1e-9))) return;
-  document["simulation"]["time_step"] = share * critical_time_step({"scenario", document, {}});
+  const json step = document.value("simulation", json::object()).value("time_step", json());
+  if (!(share > 0) || !step.is_number()) return;
+  const double critical = critical_time_step({"scenario", document, {}});
+  if (critical > 0 && step.get<double>() > share * critical * (1 + 1e-9)) document["simulation"]["time_step"] = share * critical;
 }
 
 RunSettings run_settings(const Scenario& scenario) {
