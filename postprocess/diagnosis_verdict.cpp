@@ -110,8 +110,15 @@ std::string closing_words(const Diagnosis& d) {
   return v + "\n";
 }
 
+// A numerical setting as the JSON names it: a time step in s to 3 digits, a grid as given.
+std::string setting_words(const std::string& setting) {
+  const json value = json::parse(setting, nullptr, false);
+  return value.is_number() ? fmt::format("{:.3g} s", value.get<double>()) : setting;
+}
+
 // One line per quantity and model refined: each check's distance from the setting it was made on
 // (the model's own first; the last one converged or the finest adopted), and the setting adopted.
+// The finest setting adopted was checked against nothing finer, and the line says so.
 std::string numerics_words(const std::vector<NumericsCheck>& checks) {
   std::string v;
   for (std::size_t i = 0, end = 0; i < checks.size(); i = end) {
@@ -120,12 +127,13 @@ std::string numerics_words(const std::vector<NumericsCheck>& checks) {
     std::string on = "the model's", adopted;
     for (end = i; end < checks.size() && checks[end].quantity == first.quantity && checks[end].model == first.model; ++end) {
       moved.push_back(fmt::format("by {:.0f} from {}", checks[end].distance, on));
-      if (checks[end].adopted) on = adopted = checks[end].setting;
+      if (checks[end].adopted) adopted = checks[end].setting, on = setting_words(adopted);
     }
-    if (!adopted.empty())
-      v += fmt::format("Numerics: the model's {0} was not converged for the model {1}: the finest {0}, {2}, moved the "
-                       "features {3} (limit {4:.0f}, chi2's mean); refined to {5}.\n", first.quantity, first.model,
-                       first.reference, fmt::join(moved, ", "), first.limit, adopted);
+    if (adopted.empty()) continue;
+    v += fmt::format("Numerics: the model's {0} was not converged for the model {1}: the finest {0}, {2}, moved the "
+                     "features {3} (limit {4:.0f}, chi2's mean); refined to {5}{6}.\n", first.quantity, first.model,
+                     setting_words(first.reference), fmt::join(moved, ", "), first.limit, setting_words(adopted),
+                     adopted == first.reference ? ", the finest checked, itself not checked against a finer one" : "");
   }
   return v;
 }

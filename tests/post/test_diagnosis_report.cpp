@@ -101,5 +101,19 @@ TEST(DiagnosisVerdict, SaysOnceHowFarEachSettingWasFromTheFinest) {
   EXPECT_EQ(j["numerics_checks"][1]["setting"]["per_edge"], 4);
 }
 
+// A time step reads in seconds to three digits, and a setting refined all the way to the finest
+// says that nothing finer checked it.
+TEST(DiagnosisVerdict, SaysATimeStepInSecondsAndWhenTheFinestWasAdopted) {
+  Diagnosis d;
+  d.feature_count = 10, d.chi2_final = 4, d.chi2_noise_limit = 23.2;
+  const std::string finest = "0.0007830000000000001";
+  d.numerics_checks = {NumericsCheck{"time step", "as given", finest, 25.1, 10, true, "0.0015660000000000001"},
+                       NumericsCheck{"time step", "as given", finest, 31.0, 10, true, finest}};
+  const std::string v = verdict_text(d);
+  EXPECT_NE(v.find("the finest time step, 0.000783 s, moved the features by 25 from the model's, by 31 from 0.00157 s "
+                   "(limit 10, chi2's mean); refined to 0.000783 s, the finest checked, itself not checked against a "
+                   "finer one."), std::string::npos) << v;
+}
+
 }  // namespace
 }  // namespace freestand::diagnosis
