@@ -491,13 +491,6 @@ struct Verdict {
   bool concealed = false;
 };
 
-double sample_sd(const std::vector<double>& x) {
-  double mean = 0.0, sum = 0.0;
-  for (double v : x) mean += v / x.size();
-  for (double v : x) sum += (v - mean) * (v - mean);
-  return std::sqrt(sum / (x.size() - 1));
-}
-
 }  // namespace
 
 // ---- public -------------------------------------------------------------------
@@ -685,7 +678,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
   std::vector<double> scatter_errors;
   for (int i = 1; i <= spec.perturbation.runs; ++i)
     scatter_errors.push_back(global_rms_error(recorded(base[1 + i], i, {}, nullptr), out.model));
-  const double scatter = sample_sd(scatter_errors);
+  const double scatter = signal::sample_sd(scatter_errors);
   json gains = json::object();
   const Recording without = recorded(base[1], 0, {}, &gains);
   const double error_without = global_rms_error(without, out.model);

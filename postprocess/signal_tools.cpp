@@ -107,6 +107,12 @@ double finite_mean(const std::vector<double>& y, IndexRange range) {
   return count ? sum / count : kNaN;
 }
 
+double sample_sd(const std::vector<double>& x) {
+  if (x.size() < 2) return kNaN;
+  const Eigen::Map<const Eigen::ArrayXd> a(x.data(), static_cast<Eigen::Index>(x.size()));
+  return std::sqrt((a - a.mean()).square().sum() / static_cast<double>(x.size() - 1));
+}
+
 std::vector<Run> label_runs(const std::vector<int>& labels) {
   std::vector<Run> runs;
   for (std::size_t i = 0; i < labels.size(); ++i) {

@@ -65,6 +65,9 @@ double second_difference_noise(const std::vector<double>& y);
 // Mean of the finite values of y in `range`; NaN when none.
 double finite_mean(const std::vector<double>& y, IndexRange range);
 
+// Sample standard deviation of x (divisor n - 1); NaN with fewer than 2 values.
+double sample_sd(const std::vector<double>& x);
+
 // A run of equally labelled samples [first, last] (inclusive). It lasts from
 // t[first] to the start of the next run (the last run: to t.back()).
 struct Run {
