@@ -55,6 +55,7 @@ const double kInfinity = std::numeric_limits<double>::infinity();
 const int kRefinedSpan = 5;        // points of a refined profile a parabola is fitted through (its lowest and 2 each side)
 const double kSettleReach = 3;     // the farthest the ensemble's bracket goes (settle), in steps of the fit from the nominal
 const int kMemberResamplings = 200;  // resamplings of the members behind a settled value's Monte Carlo s.e.
+const unsigned kResamplingSeed = 200;  // fixed, so that the same input gives the same s.e.
 const double kWindowMargin = 0.05;  // s a window-only run goes on past the window's end (its samples there are cut)
 const int kLaunchEvents = 3;       // touchdowns and bounces of a launched body compared: later ones are millimetres
 
@@ -1894,7 +1895,7 @@ double Diagnoser::member_resampling_sd(const EnsemblePoints& at) const {
   std::size_t count = members.front().size();
   for (const auto& m : members) count = std::min(count, m.size());
   if (count < 2) return 0;
-  std::mt19937 rng(kMemberResamplings);
+  std::mt19937 rng(kResamplingSeed);
   std::uniform_int_distribution<std::size_t> pick(0, count - 1);
   std::vector<double> values;
   for (int b = 0; b < kMemberResamplings; ++b) {
