@@ -477,36 +477,49 @@ void shift_back(const Recording& r, RecordingChannel& channel, double delay) {
   for (std::size_t k = 0; k < y.size(); ++k) channel.values[k] = signal::interpolate(r.time, y, r.time[k] + delay);
 }
 
-// One delay of every channel of a body against the table's (the body's own acquisition system,
-// a camera or logger on another clock) as a candidate for each body with two channels or
-// more, and with two such bodies or more one delay of all of them (the specimen's system, one
-// camera or logger for every body, on another clock than the table controller's: the usual
-// case in a lab, and the evidence of every body pooled). Offered whether or not a channel's
-// delay is suspected: that check correlates with the nominal run before the two diverge, and a
-// chaotic body, or a delay that is itself the divergence, leaves it too little (case15 of the
-// proof study: every body channel 80 ms late, none suspected). It runs no simulation.
-std::vector<Candidate> clock_candidates(const Recording& recording, std::size_t index) {
+// A body's own acquisition system as candidates: one delay of every channel of a body against
+// the table's (a camera or logger on another clock) and one gain of them all (one calibration
+// they share: an amplifier's gain, an ADC's reference, a camera's scale), for each body with two
+// channels or more; with two such bodies or more, the same for all of them (the specimen's
+// system, one logger for every body: the usual case in a lab, and the evidence of every body
+// pooled). Offered whether or not a channel's delay or gain is suspected: those checks correlate
+// with the nominal run before the two diverge, and a chaotic body, or a delay that is itself the
+// divergence, leaves them too little (case15 of the proof study: every body channel 80 ms late
+// and 16 % high, none suspected). They run no simulation.
+std::vector<Candidate> system_candidates(const Recording& recording, std::size_t index) {
   std::map<std::string, int> channels;  // body -> its channels in the recording
   for (const RecordingChannel& c : recording.channels)
     if (c.name.find('.') != std::string::npos) ++channels[c.name.substr(0, c.name.find('.'))];
-  std::vector<std::string> clocked;  // bodies with two channels or more
+  std::vector<std::string> systems;  // bodies with two channels or more
   for (const auto& [body, count] : channels)
-    if (count >= 2) clocked.push_back(body);
-  std::vector<Candidate> out;
-  const auto clock = [&](const std::vector<std::string>& bodies, const std::string& where, const std::string& whose) {
-    Candidate c;
-    c.entry = "sensor_delay", c.where = where, c.name = fmt::format("sensor_delay[{}.*]", where), c.unit = "s";
-    c.description = fmt::format("every sensor of {} lags the table's (another clock; a delay in the recording, not physics)", whose);
-    c.lower = -0.1, c.upper = 0.1, c.nominal = 0, c.recording = index;
-    c.correct = [bodies](Recording& r, double delay) {
+    if (count >= 2) systems.push_back(body);
+  const auto each_channel = [](const std::vector<std::string>& bodies, auto change) {
+    return [bodies, change](Recording& r, double value) {
       for (RecordingChannel& ch : r.channels)
         for (const std::string& body : bodies)
-          if (ch.name.rfind(body + ".", 0) == 0) shift_back(r, ch, delay);
+          if (ch.name.rfind(body + ".", 0) == 0) change(r, ch, value);
     };
-    out.push_back(c);
   };
-  for (const std::string& body : clocked) clock({body}, body, body);
-  if (clocked.size() >= 2) clock(clocked, kEveryBody, "every body");
+  std::vector<Candidate> out;
+  const auto system = [&](const std::vector<std::string>& bodies, const std::string& where, const std::string& whose) {
+    Candidate clock;
+    clock.entry = "sensor_delay", clock.where = where, clock.name = fmt::format("sensor_delay[{}.*]", where);
+    clock.unit = "s", clock.lower = -0.1, clock.upper = 0.1, clock.nominal = 0, clock.recording = index;
+    clock.description = fmt::format("every sensor of {} lags the table's (another clock; a delay in the recording, not physics)", whose);
+    clock.correct = each_channel(bodies, [](Recording& r, RecordingChannel& ch, double delay) { shift_back(r, ch, delay); });
+    out.push_back(clock);
+    Candidate gain;
+    gain.entry = "sensor_gain", gain.where = where, gain.name = fmt::format("sensor_gain[{}.*]", where);
+    gain.lower = 0.8, gain.upper = 1.25, gain.nominal = 1, gain.recording = index;
+    gain.description = fmt::format("every sensor of {} reads high or low by one factor (a shared calibration; a gain in "
+                                   "the recording, not physics)", whose);
+    gain.correct = each_channel(bodies, [](Recording&, RecordingChannel& ch, double g) {
+      for (double& v : ch.values) v /= g;
+    });
+    out.push_back(gain);
+  };
+  for (const std::string& body : systems) system({body}, body, body);
+  if (systems.size() >= 2) system(systems, kEveryBody, "every body");
   return out;
 }
 
@@ -974,10 +987,11 @@ MeasurementIssue sensor_issue(const FittedCandidate& f, const std::vector<std::s
   const bool delay = f.candidate.entry == "sensor_delay";
   if (delay) m.delay = f.value, m.delay_significant = true;
   else m.gain = f.value, m.gain_sd = f.standard_error, m.gain_significant = true;
-  const bool every = m.channel.find('.') == std::string::npos;  // a body's clock: all its channels
+  const bool every = m.channel.find('.') == std::string::npos;  // a body's system: all its channels
   const std::string whose = m.channel == kEveryBody ? "every body" : m.channel;
-  m.text = delay ? fmt::format("{}{} lags by {:.1f} ms", every ? "every channel of " : "", whose, 1e3 * f.value)
-                 : fmt::format("{} reads {:.1f} % {} (gain {:.3f})", m.channel, 100 * std::abs(f.value - 1),
+  const std::string channels = fmt::format("{}{}", every ? "every channel of " : "", whose);
+  m.text = delay ? fmt::format("{} lags by {:.1f} ms", channels, 1e3 * f.value)
+                 : fmt::format("{} reads {:.1f} % {} (gain {:.3f})", channels, 100 * std::abs(f.value - 1),
                                f.value > 1 ? "high" : "low", f.value);
   m.text += fmt::format(" (misfit {:.1f} -> {:.1f}, p = {:.2g}{})", f.chi2 + f.delta, f.chi2, f.p_value,
                         alike.empty() ? "" : fmt::format("; fits as well: {}", fmt::join(alike, ", ")));
@@ -1514,7 +1528,7 @@ void Diagnoser::measure() {
   for (std::size_t r = 0; r < recordings_.size(); ++r) {
     for (const MeasurementIssue& m : measurement_issues(recordings_[r], r, nominal_runs_[r], d_.divergence))
       for (Candidate& c : measurement_candidates(m, r)) sensor_candidates_.push_back(std::move(c));
-    for (Candidate& c : clock_candidates(recordings_[r], r)) sensor_candidates_.push_back(std::move(c));
+    for (Candidate& c : system_candidates(recordings_[r], r)) sensor_candidates_.push_back(std::move(c));
   }
   given_drifts_ = drifts_against(recordings_, nominal_runs_);
   retarget();

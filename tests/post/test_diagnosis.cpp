@@ -442,47 +442,80 @@ TEST(Diagnosis, NoEffectFindsNoMissingPhysics) {
   EXPECT_EQ(d.improved["simulation"]["time_step"], 1e-4);
 }
 
-// Diagnoses `recording` with every channel shifted 40 ms late, against the model with the truth's
-// restitution: a delay of `whose` (a body's name, or kEveryBody) must be measured, no physics.
-diagnosis::Diagnosis diagnose_clock_offset(Recording recording, const test::TempDir& dir, const std::string& whose) {
-  for (RecordingChannel& c : recording.channels) {
-    const std::vector<double> y = c.values;
-    for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(recording.time, y, recording.time[k] - 0.04);
-  }
+// Diagnoses `recording`, every channel already read through the system under test, against
+// the model with the truth's restitution: a measurement issue of `whose` (a body's name, or
+// kEveryBody) must be reported, no physics.
+diagnosis::Diagnosis diagnose_system_issue(const Recording& recording, const test::TempDir& dir, const std::string& whose) {
   diagnosis::Options o = fast_options(dir);
   o.max_effects = 1;
   const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
   std::cerr << d.verdict;
   EXPECT_TRUE(d.effects.empty());
   EXPECT_FALSE(d.measurement.empty());
+  if (!d.measurement.empty()) EXPECT_EQ(d.measurement.front().channel, whose);
+  return d;
+}
+
+// As diagnose_system_issue, with every channel shifted 40 ms late: that delay must be measured.
+diagnosis::Diagnosis diagnose_clock_offset(Recording recording, const test::TempDir& dir, const std::string& whose) {
+  for (RecordingChannel& c : recording.channels) {
+    const std::vector<double> y = c.values;
+    for (std::size_t k = 0; k < y.size(); ++k) c.values[k] = signal::interpolate(recording.time, y, recording.time[k] - 0.04);
+  }
+  const diagnosis::Diagnosis d = diagnose_system_issue(recording, dir, whose);
   if (d.measurement.empty()) return d;
-  EXPECT_EQ(d.measurement.front().channel, whose);
   EXPECT_TRUE(d.measurement.front().delay_significant);
   EXPECT_NEAR(d.measurement.front().delay, 0.04, 0.01);
   return d;
 }
 
-// Every sensor of the block on another clock, 40 ms behind the table's (here the release at
-// t = 0): the physics is the model's own, so the diagnosis must report a delay, a measurement
-// issue, and name no physics. The block is released tilted toward its +x +y corner so that both
-// rock channels carry the motion: a delay of one channel explains half the late events, the
-// body's clock all of them, and that is what must be named. A late record looks like a block
-// that tips more slowly or rocks on a narrower base: without the candidate for a body's clock a
-// chaotic tower's 80 ms was taken for a narrower base (case15 of the proof study). Tolerance
-// 10 ms: two steps of the delay grid (5 ms), which the event times (1 mrad noise on a 0.1 rad
-// swing) resolve.
-TEST(Diagnosis, MeasuresAClockOffsetOfABodysSensorsNotPhysics) {
-  test::TempDir dir;
+// The block of the tests below released tilted toward its +x +y corner, so that both rock
+// channels carry the motion.
+json corner_released_block() {
   json truth = rocking_scenario(0.3);
   // Tilted by t about (-1, 1, 0)/sqrt(2), the +x +y corner (b, b, 0) kept in place: the base
   // centre goes to (b - b cos t, b - b cos t, sqrt(2) b sin t).
   const double b = 0.1, t = 0.5 * std::atan(std::sqrt(2.0) * b / 0.3);
   truth["bodies"][0]["position"] = {b - b * std::cos(t), b - b * std::cos(t), std::sqrt(2.0) * b * std::sin(t)};
   truth["bodies"][0]["orientation"] = {std::cos(t / 2), -std::sin(t / 2) / std::sqrt(2.0), std::sin(t / 2) / std::sqrt(2.0), 0.0};
-  const diagnosis::Diagnosis d = diagnose_clock_offset(rocking_recording(truth, dir, 14), dir, "block");
+  return truth;
+}
+
+// Every sensor of the block on another clock, 40 ms behind the table's (here the release at
+// t = 0): the physics is the model's own, so the diagnosis must report a delay, a measurement
+// issue, and name no physics. Both rock channels carry the motion: a delay of one channel
+// explains half the late events, the body's clock all of them, and that is what must be named.
+// A late record looks like a block that tips more slowly or rocks on a narrower base: without
+// the candidate for a body's clock a chaotic tower's 80 ms was taken for a narrower base (case15
+// of the proof study). Tolerance 10 ms: two steps of the delay grid (5 ms), which the event
+// times (1 mrad noise on a 0.1 rad swing) resolve.
+TEST(Diagnosis, MeasuresAClockOffsetOfABodysSensorsNotPhysics) {
+  test::TempDir dir;
+  const diagnosis::Diagnosis d = diagnose_clock_offset(rocking_recording(corner_released_block(), dir, 14), dir, "block");
   if (d.measurement.empty()) return;
   std::cout << fmt::format("measured: delay of {} = {:.4f} s for 0.04\n", d.measurement.front().channel,
                            d.measurement.front().delay);
+}
+
+// Every sensor of the block read through one calibration 10 % high (a shared amplifier or ADC
+// reference): the block rocks as the model says, so a gain of the body's system must be
+// reported, not physics. A uniformly scaled record keeps the decay per impact but pairs each
+// swing's half-period with an amplitude 10 % too large, which no physical candidate does to
+// every event at once; one channel's gain explains half of it. Tolerance 0.02: two steps of
+// the gain grid (0.01125), the amplitudes (0.1 rad against 1 mrad of noise) resolve 1 %.
+TEST(Diagnosis, MeasuresAGainOfABodysSensorsNotPhysics) {
+  test::TempDir dir;
+  Recording recording = rocking_recording(corner_released_block(), dir, 14);
+  for (RecordingChannel& c : recording.channels)
+    if (c.name.rfind("block.", 0) == 0)
+      for (double& v : c.values) v *= 1.1;
+  const diagnosis::Diagnosis d = diagnose_system_issue(recording, dir, "block");
+  if (d.measurement.empty()) return;
+  EXPECT_TRUE(d.measurement.front().gain_significant);
+  EXPECT_NEAR(d.measurement.front().gain, 1.1, 0.02);
+  EXPECT_NE(d.verdict.find("every channel of block reads"), std::string::npos);
+  std::cout << fmt::format("measured: gain of {} = {:.4f} +- {:.4f} for 1.1\n", d.measurement.front().channel,
+                           d.measurement.front().gain, d.measurement.front().gain_sd);
 }
 
 // Two blocks rocking freely side by side, every body channel 40 ms late (the specimen's
