@@ -1313,7 +1313,7 @@ class Diagnoser {
   void refine(Round& r, std::size_t i);
   void test_physics(Round& r, std::size_t i);
   void test_sensor(Round& r, std::size_t i);
-  std::size_t against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike);
+  std::size_t against_rivals(Round& r, std::size_t best, std::vector<std::size_t>& alike);
   std::vector<Features> ensemble_at(const Round& r, const Candidate& c, double u, int members);
   using EnsemblePoints = std::vector<std::pair<double, std::vector<Features>>>;  // (scaled value, its ensemble's runs)
   std::vector<std::pair<double, double>> ensemble_curve(const EnsemblePoints& at) const;
@@ -1339,7 +1339,7 @@ class Diagnoser {
   void note_shapes(const Round& r, const std::vector<SettlePoints>& shapes, const ScoredShapes& scored);
   std::pair<std::size_t, std::size_t> settled_point(Round& r, std::size_t i, const std::vector<SettlePoints>& shapes);
   void settle(Round& r, std::size_t i);
-  void accept(Round& r, std::size_t best, std::vector<std::string> alike);
+  void accept(Round& r, std::size_t best, std::vector<std::size_t> alike);
   void finish();
   void against_improved(const std::vector<Features>& final_members);
   json improved_scenario();
@@ -1617,7 +1617,7 @@ bool Diagnoser::search_round(int number) {
   Round r = profiled(number);
   screen(r);
   std::size_t best = first_passing(r);
-  std::vector<std::string> alike;
+  std::vector<std::size_t> alike;  // r.fits of the rivals that fit as well
   if (best < candidates_.size()) {
     best = against_rivals(r, best, alike);
     settle(r, best);
@@ -1855,7 +1855,7 @@ void Diagnoser::test_sensor(Round& r, std::size_t i) {
 // that evidence: on the quick drops alone (until 2026-11-28) a restitution that had failed its
 // test and an untested COM offset were named as fitting as well as a true edge inset
 // (Diagnosis.NamesAndRecoversEdgeInset, profiles on the fit window).
-std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<std::string>& alike) {
+std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<std::size_t>& alike) {
   const std::size_t first = best;
   // A candidate's quick drop and the first's on the same footing: the screen's where both ran
   // there (3 members), else the single-run profiles'.
@@ -1879,7 +1879,7 @@ std::size_t Diagnoser::against_rivals(Round& r, std::size_t best, std::vector<st
                                      between.value, between.se));
       best = j;
     } else if (!exceeds({-between.value, between.se}, kIndistinguishable)) {
-      alike.push_back(candidates_[between.value > 0 ? best : j].name);
+      alike.push_back(between.value > 0 ? best : j);
       if (between.value > 0) best = j;
     }
   }
@@ -2097,21 +2097,22 @@ void Diagnoser::settle(Round& r, std::size_t i) {
 // `alike` are the physics candidate's rivals that fit alike on the ensemble (against_rivals);
 // a sensor's are the candidates whose profile dropped within kIndistinguishable of its own.
 // The other candidates of a similar entry whose profile dropped are named as similar.
-void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alike) {
+void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::size_t> alike) {
   const FittedCandidate f = r.fits[best];
   std::vector<std::pair<std::string, double>> similar;
   const bool sensor = best >= candidates_.size();
   for (std::size_t i = 0; i < r.fits.size(); ++i) {
-    if (i == best || r.profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), r.fits[i].candidate.name))
-      continue;
-    if (sensor && r.profile_delta[i] > r.profile_delta[best] - kIndistinguishable) alike.push_back(r.fits[i].candidate.name);
+    if (i == best || r.profile_delta[i] <= 0 || std::count(alike.begin(), alike.end(), i)) continue;
+    if (sensor && r.profile_delta[i] > r.profile_delta[best] - kIndistinguishable) alike.push_back(i);
     else if (of_similar_signature(f.candidate, r.fits[i].candidate))
       similar.push_back({r.fits[i].candidate.name, r.profile_delta[i]});
   }
   if (best >= candidates_.size()) {
     f.candidate.correct(measured_[f.candidate.recording], f.value);
     retarget();
-    d_.measurement.push_back(sensor_issue(f, alike));
+    std::vector<std::string> names;
+    for (std::size_t i : alike) names.push_back(r.fits[i].candidate.name);
+    d_.measurement.push_back(sensor_issue(f, names));
     d_.measurement.back().round = r.number;
     sensor_candidates_.erase(sensor_candidates_.begin() + static_cast<std::ptrdiff_t>(best - candidates_.size()));
     return;
@@ -2126,7 +2127,7 @@ void Diagnoser::accept(Round& r, std::size_t best, std::vector<std::string> alik
     e.fit = f;
     e.candidates_tried = tried_;
     e.round = r.number;
-    e.indistinguishable = alike;
+    for (std::size_t i : alike) e.indistinguishable.push_back(r.fits[i]);
     e.similar = similar;
     e.verdict = f.candidate.measurement ? "measurement" : f.candidate.stated ? "recalibrated" : "missing physics";
     const double ratio = f.candidate.nominal != 0 ? f.value / f.candidate.nominal : 1.0;

@@ -191,7 +191,8 @@ struct Effect {               // an accepted candidate
   FittedCandidate fit;
   std::string verdict;        // "recalibrated", "missing physics" or "measurement"
   bool far_off = false;       // a stated value moved by a factor > 3 (or beyond its stated bound)
-  std::vector<std::string> indistinguishable;  // candidates that fit as well (delta within 2)
+  std::vector<FittedCandidate> indistinguishable;  // rivals that fit as well on the ensemble, each at its own
+                                                  // fitted value: the recording cannot tell them apart
   std::vector<std::pair<std::string, double>> similar;  // candidates of a similar entry that also helped: profile drop
   int candidates_tried = 0;   // counted in the Holm correction
   int round = 0;              // the search round that accepted it (1 = first)

@@ -52,24 +52,39 @@ std::string members_words(const FittedCandidate& f) {
   return f.members > 0 ? fmt::format(" on {} members of each model", f.members) : "";
 }
 
+// A fitted value's uncertainty: a factor for a log-scale one.
+std::string uncertainty_words(const FittedCandidate& f) {
+  return !std::isfinite(f.standard_error) ? "uncertainty not resolved"
+         : f.candidate.log_scale          ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
+                                          : fmt::format("+- {:.2g}", f.standard_error);
+}
+
+// The rivals that fit as well, each at its own value and in plain words: the user must know
+// what else the recording allows (an off-axis centre of mass or worn edges are different
+// repairs), not only its name.
+std::string alike_words(const Effect& e) {
+  if (e.indistinguishable.empty()) return "";
+  std::vector<std::string> parts;
+  for (const FittedCandidate& g : e.indistinguishable)
+    parts.push_back(fmt::format("{} = {} ({}): {}", g.candidate.name, format_value(g.candidate, g.value),
+                                uncertainty_words(g), g.candidate.description));
+  return fmt::format(" Fits as well, so this recording cannot tell them apart: {}.", fmt::join(parts, "; "));
+}
+
 // One accepted effect: what, the value and its uncertainty, the misfit before and after, and
 // what fits alike.
 std::string effect_words(const Effect& e) {
   const FittedCandidate& f = e.fit;
-  const std::string err = !std::isfinite(f.standard_error) ? "uncertainty not resolved"
-                          : f.candidate.log_scale ? fmt::format("x/ {:.2f}", std::exp(f.standard_error))
-                                                  : fmt::format("+- {:.2g}", f.standard_error);
   return fmt::format("{}: {} ({} = {}{}, {}; model had {}). Misfit {:.1f} -> {:.1f} (+- {:.1f}){}, p = {:.2g} "
                      "after {} candidates, held-out improvement {:.1f}.{}{}{}{}\n",
                      e.verdict == "recalibrated" ? "Recalibrated" : e.verdict == "measurement" ? "Measurement"
                                                                                               : "Missing physics",
                      f.candidate.description, f.candidate.name, format_value(f.candidate, f.value),
-                     format_shape(f.candidate), err,
+                     format_shape(f.candidate), uncertainty_words(f),
                      format_value(f.candidate, f.candidate.nominal), f.chi2 + f.delta, f.chi2, f.delta_se, members_words(f),
                      f.p_value, e.candidates_tried, f.held_out_delta, alike_shape_words(f),
                      e.far_off ? " FAR from the stated value: check the nominal." : "",
-                     e.indistinguishable.empty() ? "" : fmt::format(" Fits as well: {}.", fmt::join(e.indistinguishable, ", ")),
-                     similar_words(e));
+                     alike_words(e), similar_words(e));
 }
 
 // A chi2 difference between two models, the second's "lower" when delta > 0.
@@ -218,7 +233,9 @@ json diagnosis_json(const Diagnosis& d) {
     json j = fitted(e.fit);
     json similar = json::array();
     for (const auto& [name, drop] : e.similar) similar.push_back({{"candidate", name}, {"profile_delta_chi2", drop}});
-    j.update({{"far_off", e.far_off}, {"indistinguishable_from", e.indistinguishable}, {"similar_signature", similar},
+    json alike = json::array();
+    for (const FittedCandidate& g : e.indistinguishable) alike.push_back(fitted(g));
+    j.update({{"far_off", e.far_off}, {"indistinguishable_from", alike}, {"similar_signature", similar},
               {"candidates_tried", e.candidates_tried}, {"round", e.round}});
     if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
     out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);

@@ -115,5 +115,31 @@ TEST(DiagnosisVerdict, SaysATimeStepInSecondsAndWhenTheFinestWasAdopted) {
                    "finer one."), std::string::npos) << v;
 }
 
+// A rival that fits as well is named with its own value, uncertainty and plain words, in the
+// verdict and in the JSON, since it means another repair (case04 of the proof study: an
+// off-axis centre of mass named, worn edges fitting as well).
+TEST(DiagnosisVerdict, SaysWhatARivalThatFitsAsWellWouldBe) {
+  Diagnosis d;
+  d.feature_count = 47, d.chi2_final = 14.8, d.chi2_noise_limit = 72.5;
+  Effect e;
+  e.verdict = "missing physics";
+  e.fit.candidate.name = "com_offset_x[block]", e.fit.candidate.unit = "m";
+  e.fit.candidate.description = "the centre of mass of 'block' is off its axis along x";
+  e.fit.value = -0.0158, e.fit.standard_error = 0.0019;
+  FittedCandidate inset;
+  inset.candidate.name = "edge_inset[block]", inset.candidate.unit = "m";
+  inset.candidate.description = "'block' rocks on edges inset from its geometric base edges";
+  inset.value = 0.00817, inset.standard_error = 0.0012;
+  e.indistinguishable.push_back(inset);
+  d.effects.push_back(e);
+  const std::string v = verdict_text(d);
+  EXPECT_NE(v.find("Fits as well, so this recording cannot tell them apart: edge_inset[block] = 0.00817 m (+- 0.0012): "
+                   "'block' rocks on edges inset from its geometric base edges."), std::string::npos) << v;
+  const nlohmann::json j = diagnosis_json(d)["effects"][0]["indistinguishable_from"];
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(j[0]["candidate"], "edge_inset[block]");
+  EXPECT_DOUBLE_EQ(j[0]["value"].get<double>(), 0.00817);
+}
+
 }  // namespace
 }  // namespace freestand::diagnosis
