@@ -519,6 +519,28 @@ TEST(Diagnosis, MeasuresAGainOfABodysSensorsNotPhysics) {
                            d.measurement.front().gain, d.measurement.front().gain_sd);
 }
 
+// The same block read 50 % high, beyond any calibrated sensor and the gain's range (0.8-1.25):
+// the fit of the body's gain still improves at 1.25, so it found no minimum and stands in for
+// something else (case14 of the proof study: a table's vertical motion was taken for every
+// body's gain at 1.25). It must not be reported as a measurement, and the notes must say why.
+TEST(Diagnosis, TakesNoSensorGainThatStillImprovesAtItsRangeEnd) {
+  test::TempDir dir;
+  Recording recording = rocking_recording(corner_released_block(), dir, 14);
+  for (RecordingChannel& c : recording.channels)
+    if (c.name.rfind("block.", 0) == 0)
+      for (double& v : c.values) v *= 1.5;
+  diagnosis::Options o = fast_options(dir);
+  o.max_effects = 1;
+  const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
+  std::cerr << d.verdict;
+  for (const diagnosis::MeasurementIssue& m : d.measurement)
+    EXPECT_FALSE(m.gain_significant && m.gain > 1.24) << m.text;
+  const auto note = std::find_if(d.notes.begin(), d.notes.end(), [](const std::string& n) {
+    return n.find("sensor_gain[block.*] still improves at its range end") != std::string::npos;
+  });
+  EXPECT_NE(note, d.notes.end());
+}
+
 // Two blocks rocking freely side by side, every body channel 40 ms late (the specimen's
 // acquisition on another clock than the table's): the delay of every body is named, not one
 // body's, and it takes the evidence of both (its drop at least each body's own). Tolerance as
