@@ -498,6 +498,16 @@ TEST(Diagnosis, MeasuresAClockOffsetOfABodysSensorsNotPhysics) {
                            d.measurement.front().delay);
 }
 
+// The corner-released block's recording with every one of its channels read `gain` times high
+// (one calibration its sensors share).
+Recording block_read_high(const test::TempDir& dir, double gain) {
+  Recording recording = rocking_recording(corner_released_block(), dir, 14);
+  for (RecordingChannel& c : recording.channels)
+    if (c.name.rfind("block.", 0) == 0)
+      for (double& v : c.values) v *= gain;
+  return recording;
+}
+
 // Every sensor of the block read through one calibration 10 % high (a shared amplifier or ADC
 // reference): the block rocks as the model says, so a gain of the body's system must be
 // reported, not physics. A uniformly scaled record keeps the decay per impact but pairs each
@@ -506,10 +516,7 @@ TEST(Diagnosis, MeasuresAClockOffsetOfABodysSensorsNotPhysics) {
 // the gain grid (0.01125), the amplitudes (0.1 rad against 1 mrad of noise) resolve 1 %.
 TEST(Diagnosis, MeasuresAGainOfABodysSensorsNotPhysics) {
   test::TempDir dir;
-  Recording recording = rocking_recording(corner_released_block(), dir, 14);
-  for (RecordingChannel& c : recording.channels)
-    if (c.name.rfind("block.", 0) == 0)
-      for (double& v : c.values) v *= 1.1;
+  const Recording recording = block_read_high(dir, 1.1);
   const diagnosis::Diagnosis d = diagnose_system_issue(recording, dir, "block");
   if (d.measurement.empty()) return;
   EXPECT_TRUE(d.measurement.front().gain_significant);
@@ -525,10 +532,7 @@ TEST(Diagnosis, MeasuresAGainOfABodysSensorsNotPhysics) {
 // body's gain at 1.25). It must not be reported as a measurement, and the notes must say why.
 TEST(Diagnosis, TakesNoSensorGainThatStillImprovesAtItsRangeEnd) {
   test::TempDir dir;
-  Recording recording = rocking_recording(corner_released_block(), dir, 14);
-  for (RecordingChannel& c : recording.channels)
-    if (c.name.rfind("block.", 0) == 0)
-      for (double& v : c.values) v *= 1.5;
+  const Recording recording = block_read_high(dir, 1.5);
   diagnosis::Options o = fast_options(dir);
   o.max_effects = 1;
   const diagnosis::Diagnosis d = diagnosis::diagnose(model(0.3), {recording}, o);
