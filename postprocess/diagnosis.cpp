@@ -48,6 +48,7 @@ const double kFarOff = 3;          // a stated value moved by more than this fac
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
 const int kFinestStepDivisor = 4;   // the finest time step it affords: the model's over this
 const std::size_t kMinWindowSamples = 3;  // a fit window shorter than the motion analysis takes: profiles run whole
+const int kSensorSteps = 40;      // steps of a sensor candidate's grid over its range (41 points: 5 ms, about 1 %)
 const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
 const int kScreened = 2 * kAttempts;  // physics candidates screened per round (those whose profiles dropped most)
 const int kScreenMembers = 3;      // members a screened candidate runs as (a drop's jackknife needs 3 pairs)
@@ -965,13 +966,14 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
                            bool held_available, int fit_count) {
   const std::vector<Features> members = members_of(runs, recordings.size());
   std::vector<std::pair<double, double>> curve, held_curve;
-  for (int k = 0; k <= 40; ++k) {
-    const double v = c.lower + (c.upper - c.lower) * k / 40.0;
+  for (int k = 0; k <= kSensorSteps; ++k) {
+    const double v = c.lower + (c.upper - c.lower) * k / kSensorSteps;
     std::vector<Recording> corrected = recordings;
     c.correct(corrected[c.recording], v);
     const Target t = make_target(corrected, {runs}, search, held);
-    curve.push_back({k / 40.0, t.ensemble_chi2(members, false)});
-    held_curve.push_back({k / 40.0, t.ensemble_chi2(members, true)});
+    const double u = static_cast<double>(k) / kSensorSteps;
+    curve.push_back({u, t.ensemble_chi2(members, false)});
+    held_curve.push_back({u, t.ensemble_chi2(members, true)});
   }
   const std::size_t best = lowest_point(curve);
   FittedCandidate f;
@@ -992,7 +994,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
 // vertical motion, fitted as every body's gain at 1.25, then the pedestal's at 1.25 again).
 bool at_range_end(const FittedCandidate& f) {
   const Candidate& c = f.candidate;
-  const double half_step = (c.upper - c.lower) / 80.0;  // fit_sensor's grid has 40 steps
+  const double half_step = 0.5 * (c.upper - c.lower) / kSensorSteps;
   return f.value < c.lower + half_step || f.value > c.upper - half_step;
 }
 
