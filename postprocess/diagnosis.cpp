@@ -21,6 +21,7 @@
 #include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "launched_body.h"
+#include "pivot_levers.h"
 #include "results_analysis.h"
 #include "scenario.h"
 #include "shooting.h"
@@ -173,6 +174,48 @@ void launched_features(const AnalysedBody& body, double size, const analysis::An
 
 namespace {
 
+// Samples where `body` can rock on its base as on a still support: it is not in flight, lost or
+// overturned, and what supports it is the table or a body at rest (the angles and the uplift
+// are in the world frame: a rocking pedestal would carry its tower's pivot).
+std::vector<bool> on_still_support(const AnalysedBody& body, const std::vector<AnalysedBody>& bodies) {
+  std::vector<bool> use(body.motion.time.size(), true);
+  for (const analysis::ModeSegment& seg : body.summary.modes)
+    if (seg.mode == analysis::Mode::flight || seg.mode == analysis::Mode::lost || seg.mode == analysis::Mode::overturned) {
+      const signal::IndexRange r = signal::index_range(body.motion.time, seg.start, seg.end);
+      for (std::size_t k = r.first; k < r.last; ++k) use[k] = false;
+    }
+  for (const AnalysedBody& below : bodies)
+    if (below.name == body.supported_by) {
+      const std::vector<bool> rest = at_rest(below.motion.time, below.summary.modes);
+      for (std::size_t k = 0; k < use.size() && k < rest.size(); ++k) use[k] = use[k] && rest[k];
+    }
+  return use;
+}
+
+// The pivot's lever on each side the body rocks to (pivot_levers.h): where it pivots, which chaos
+// does not reshuffle, so an inset edge (both sides shorter) and a centre of mass off the axis
+// (one side shorter, the other longer) that fit the rocking events alike are told apart. A side
+// counts where the body leans beyond 10 angle-noise s.d. (a lift of a few length-noise s.d. on a
+// lever of decimetres) for 0.1 s in all. Its floor is the lever's s.d. from the length noise, and
+// at least the ratio's own from the gains of the two body channels it divides (uplift over
+// angle), as the table carry's; dated at the first lean to that side.
+template <class Add>
+void lever_features(const AnalysedBody& body, const std::vector<AnalysedBody>& bodies, const std::vector<double>* travel,
+                    const analysis::AnalysisParameters& p, ChannelGainSd gains, Add& add) {
+  const auto& c = body.motion.channels;
+  if (c[analysis::kUplift].empty() || (c[analysis::kRockX].empty() && c[analysis::kRockY].empty())) return;
+  const auto channel = [&](int i) { return c[i].empty() ? nullptr : &c[i]; };
+  const PivotLevers levers = pivot_levers(body.motion.time, channel(analysis::kRockX), channel(analysis::kRockY),
+                                          c[analysis::kUplift], travel, on_still_support(body, bodies),
+                                          body.geometry.com_height, 10 * p.angle_noise, 0.1, p.length_noise);
+  for (int axis : {0, 1})
+    for (int side : {0, 1}) {
+      const double lever = levers.lever(axis, side);
+      add(fmt::format("{}.lever_{}", channel_names()[axis], side == 0 ? "pos" : "neg"), lever, levers.onset(axis, side),
+          std::max(levers.sd(axis, side), std::hypot(gains.sensor, gains.sensor) * std::abs(lever)), "rock", false);
+    }
+}
+
 // `recording` with `analysis_nominal` in place of its own (its geometry and noise thresholds).
 Recording with_nominal(const Recording& recording, const json& analysis_nominal) {
   Recording r;
@@ -226,14 +269,15 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 }
 
 Features event_features(const Recording& recording, const json& analysis_nominal, const SlipReference* reference,
-                        double gain_sd) {
+                        ChannelGainSd gains) {
   const Recording r = with_nominal(recording, analysis_nominal);
   const analysis::AnalysisParameters p = parameters_for(analysis_nominal);
   const double dt = sample_step(r.time), end = r.time.back();
   Features out;
   // `event`: the feature dates an event (an impact, a slip, the onset), whose existence is
   // compared on its own (Target::ensemble_z); the event's other features only where it exists.
-  for (const AnalysedBody& body : analyse_recording(r)) {
+  const std::vector<AnalysedBody> bodies = analyse_recording(r);
+  for (const AnalysedBody& body : bodies) {
     const analysis::MotionSummary& s = body.summary;
     const auto& names = channel_names();
     auto add = [&](const std::string& name, double value, double time, double floor, const char* mode, bool event) {
@@ -270,6 +314,7 @@ Features event_features(const Recording& recording, const json& analysis_nominal
         add(ch + ".dominant_frequency", comparison::spectrum(body.motion.time, body.motion.channels[axis]).dominant_frequency,
             0, 1 / (end - r.time.front()), "rock", false);
     }
+    lever_features(body, bodies, r.table_channel('d', 'x'), p, gains, add);
     double total_slip = 0;
     const std::vector<analysis::SlipEvent>* reference_slips = nullptr;
     if (reference)
@@ -305,7 +350,7 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     // How far the body rises per m of table travel while it rests: table motion the model was
     // not given (a vertical component in step with x) carries it, where a chaotic rock cannot
     // reach. Fitted with a drift beside it. Its floor is the slope's s.d. from the length noise,
-    // and at least the ratio's own from the gains of the two channels it divides (gain_sd): with
+    // and at least the ratio's own from the gains of the two channels it divides (`gains`): with
     // the noise alone, case14's pedestal (0.819 carried, 0 in the model as given) read z = 1378,
     // and any candidate that moved that one feature a little outranked the rest (study 25).
     // Only of a body on the table: one on another body rides that body's carry (counted once,
@@ -316,7 +361,9 @@ Features event_features(const Recording& recording, const json& analysis_nominal
       const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[analysis::kUplift], {travel},
                                          at_rest(body.motion.time, s.modes), p.length_noise, kMinCarryRest);
       const double carry = fit.slope(1), sd = fit.sd(1);
-      if (std::isfinite(sd)) add("uplift.table_carry", carry, 0, std::max(sd, gain_sd * std::abs(carry)), "uplift", false);
+      if (std::isfinite(sd))
+        add("uplift.table_carry", carry, 0, std::max(sd, std::hypot(gains.table, gains.sensor) * std::abs(carry)),
+            "uplift", false);
     }
   }
   return out;
@@ -606,13 +653,13 @@ class Search {
   }
 
   // The relative s.d. of a body channel over the table's from their gains (a carry's floor).
-  double ratio_gain_sd() const { return std::hypot(options_.table_gain_sd, options_.sensor_gain_sd); }
+  ChannelGainSd gain_sd() const { return {options_.table_gain_sd, options_.sensor_gain_sd}; }
 
   // Recording r's event features, its slips named as those of r as given (matched_slips): a
   // sensor's correction of the recording, which can split or drop a slip at the detection
   // threshold, renames none of the others.
   Features recorded_features(const Recording& recording, std::size_t r) const {
-    return prefixed(event_features(recording, recording.nominal, &slip_references_[r], ratio_gain_sd()), r);
+    return prefixed(event_features(recording, recording.nominal, &slip_references_[r], gain_sd()), r);
   }
 
   // Features of every job (prefixed with the recording number when there are
@@ -680,7 +727,7 @@ class Search {
     for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sim))
       add_drift(sim, m.channel, m.drift, recorded.time.front());
     add_measurement_noise(sim, noise_for(recorded, job.seed, job.gains));
-    return prefixed(event_features(sim, recorded.nominal, &slip_references_[job.recording], ratio_gain_sd()), job.recording);
+    return prefixed(event_features(sim, recorded.nominal, &slip_references_[job.recording], gain_sd()), job.recording);
   }
 
   // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,

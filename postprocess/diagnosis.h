@@ -110,10 +110,14 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 // geometry and noise thresholds (the recording's nominal, for both sides). Slip i names the
 // reference's slip i it is matched to (matched_slips); one matched to none is numbered on
 // after the reference's, in time order (an event the reference lacks). Without a reference,
-// slips are numbered in time order. `gain_sd`: the relative s.d. of a ratio of a body channel to
-// the table's (their gains'), the floor of such a feature (the table carry).
+// slips are numbered in time order. `gains`: the calibration of the channels, the floor of a
+// feature that is a ratio of two (the table carry, the pivot levers).
+struct ChannelGainSd {
+  double table = 0;   // relative s.d. of the recorded table acceleration's gain
+  double sensor = 0;  // relative s.d. of each recorded body channel's gain
+};
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal,
-                        const SlipReference* reference = nullptr, double gain_sd = 0);
+                        const SlipReference* reference = nullptr, ChannelGainSd gains = {});
 
 // MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
 inline const std::string kEveryBody = "*";

@@ -878,11 +878,33 @@ TEST(DiagnosisFeatures, ReadsARestingBodysCarryByTheTableApartFromADrift) {
     EXPECT_LT(carry->second.floor, 0.0125 / 3);
     // A ratio of two channels is known no better than their gains: at a gain s.d. of 50 % the
     // floor is half the carry where that exceeds the noise's s.d.
-    const diagnosis::Features g = diagnosis::event_features(r, r.nominal, nullptr, 0.5);
+    const diagnosis::Features g = diagnosis::event_features(r, r.nominal, nullptr, {0.5, 0});
     const auto loose = g.find("block.uplift.table_carry");
     ASSERT_NE(loose, g.end());
     EXPECT_DOUBLE_EQ(loose->second.floor, std::max(carry->second.floor, 0.5 * std::abs(carry->second.value)));
   }
+}
+
+// The pivot's lever on each side (pivot_levers.h) of a block rocking freely on the simulator,
+// against its geometry: a centre of mass 12 mm off the axis toward +x leaves 88 mm to the +x
+// edge and 112 mm to the -x edge of the 0.1 m half-width. The half-difference of the two sides
+// is the offset alone (a contact that sinks the pivot under load shortens both alike); each side
+// is allowed 3 s.d. of its floor plus 2 mm of sinking.
+TEST(DiagnosisFeatures, ReadsACentreOfMassOffFromTheLeverOnEachSide) {
+  test::TempDir dir;
+  json truth = rocking_scenario(0.3);
+  truth["bodies"][0]["com"] = {0.012, 0.0, 0.3};
+  const Recording r = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 21});
+  const diagnosis::Features f = diagnosis::event_features(r, r.nominal);
+  ASSERT_TRUE(f.count("block.rock_x.lever_pos") && f.count("block.rock_x.lever_neg"));
+  const diagnosis::FeatureValue& pos = f.at("block.rock_x.lever_pos");
+  const diagnosis::FeatureValue& neg = f.at("block.rock_x.lever_neg");
+  std::cout << fmt::format("measured: lever + {:.5f} +- {:.5f}, - {:.5f} +- {:.5f} (0.088, 0.112)\n", pos.value,
+                           pos.floor, neg.value, neg.floor);
+  EXPECT_NEAR(pos.value, 0.088, 3 * pos.floor + 2e-3);
+  EXPECT_NEAR(neg.value, 0.112, 3 * neg.floor + 2e-3);
+  EXPECT_NEAR((neg.value - pos.value) / 2, 0.012, 3 * std::hypot(pos.floor, neg.floor) / 2);
+  EXPECT_LT(pos.time, neg.time);  // released leaning to +x
 }
 
 // A small block standing on the block rides the block's carry by the table: the carry is a
