@@ -88,6 +88,7 @@ struct FeatureValue {
   std::string mode;   // rock, slide, twist, uplift
   bool event = false;   // marks an event (its time): whether it happens at all is evidence of its own
   bool present = true;  // false: an event simulations have that the recording lacks (value unused)
+  bool splits = true;   // its time counts toward the held-out split; false for one read from the whole record at once
 };
 using Features = std::map<std::string, FeatureValue>;  // "block.rock_x.impact3.amplitude" -> value
 // The only key of a failed simulation's features: a model that does not run fits nothing (its

@@ -905,6 +905,7 @@ TEST(DiagnosisFeatures, ReadsACentreOfMassOffFromTheLeverOnEachSide) {
   EXPECT_NEAR(neg.value, 0.112, 3 * neg.floor + 2e-3);
   EXPECT_NEAR((neg.value - pos.value) / 2, 0.012, 3 * std::hypot(pos.floor, neg.floor) / 2);
   EXPECT_LT(pos.time, neg.time);  // released leaning to +x
+  EXPECT_FALSE(pos.splits);  // read from the whole record: its date does not move the held-out split
 }
 
 // A small block standing on the block rides the block's carry by the table: the carry is a
