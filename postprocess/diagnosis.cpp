@@ -45,6 +45,9 @@ const double kMinCarryRest = 0.25;  // s: the shortest rest whose carry by the t
                                     // carry's regressor is the travel, which a shaking table spans by centimetres in
                                     // a quarter second, and a table strong enough to rock a block often does so
                                     // within its first second
+const double kLeverTilt = 10;      // angle-noise s.d. a body leans beyond for a side's lever: a lift of a few
+                                   // length-noise s.d. on a lever of decimetres
+const double kLeverMinLean = 0.1;  // s: the least time leaning beyond that tilt that fits a side's lever
 const double kFarOff = 3;          // a stated value moved by more than this factor is flagged
 const int kFinestPerEdge = 8;       // the finest contact grid the numerics check affords (segments per edge)
 const int kFinestStepDivisor = 4;   // the finest time step it affords: the model's over this
@@ -195,8 +198,7 @@ std::vector<bool> on_still_support(const AnalysedBody& body, const std::vector<A
 // The pivot's lever on each side the body rocks to (pivot_levers.h): where it pivots, which chaos
 // does not reshuffle, so an inset edge (both sides shorter) and a centre of mass off the axis
 // (one side shorter, the other longer) that fit the rocking events alike are told apart. A side
-// counts where the body leans beyond 10 angle-noise s.d. (a lift of a few length-noise s.d. on a
-// lever of decimetres) for 0.1 s in all. Its floor is the lever's s.d. from the length noise, and
+// counts where the body leans beyond kLeverTilt for kLeverMinLean in all. Its floor is the lever's s.d. from the length noise, and
 // at least the ratio's own from the gains of the two body channels it divides (uplift over
 // angle), as the table carry's. Dated at the first lean to that side (where the mismatch is
 // located), but read from every lean at once, so its date does not move the held-out split: on
@@ -210,7 +212,7 @@ void lever_features(const AnalysedBody& body, const std::vector<AnalysedBody>& b
   const auto channel = [&](int i) { return c[i].empty() ? nullptr : &c[i]; };
   const PivotLevers levers = pivot_levers(body.motion.time, channel(analysis::kRockX), channel(analysis::kRockY),
                                           c[analysis::kUplift], travel, on_still_support(body, bodies),
-                                          body.geometry.com_height, 10 * p.angle_noise, 0.1, p.length_noise);
+                                          body.geometry.com_height, kLeverTilt * p.angle_noise, kLeverMinLean, p.length_noise);
   for (int axis : {0, 1})
     for (int side : {0, 1}) {
       const double lever = levers.lever(axis, side);
@@ -658,7 +660,8 @@ class Search {
     for (const Recording& r : recordings_) slip_references_.push_back(slip_reference(r, r.nominal));
   }
 
-  // The relative s.d. of a body channel over the table's from their gains (a carry's floor).
+  // The relative s.d. of the table's and each body channel's gain: the floor of a feature that is
+  // a ratio of two channels (the carry, the levers).
   ChannelGainSd gain_sd() const { return {options_.table_gain_sd, options_.sensor_gain_sd}; }
 
   // Recording r's event features, its slips named as those of r as given (matched_slips): a
