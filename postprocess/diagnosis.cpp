@@ -200,26 +200,36 @@ std::vector<bool> on_still_support(const AnalysedBody& body, const std::vector<A
 // (one side shorter, the other longer) that fit the rocking events alike are told apart. A side
 // counts where the body leans beyond kLeverTilt for kLeverMinLean in all. Its floor is the lever's s.d. from the length noise, and
 // at least the ratio's own from the gains of the two body channels it divides (uplift over
-// angle), as the table carry's. Dated at the first lean to that side (where the mismatch is
-// located), but read from every lean at once, so its date does not move the held-out split: on
-// the tower benchmark the three levers moved it from 12.87 to 11.74 s, before the COM's
-// mismatched impacts, and the benchmark ended "Unexplained" (study 34; study 28 met the same).
+// angle), as the table carry's. Read apart on each side of `held_after` (the held-out split; the
+// whole record when infinite): the fit set's lever from the samples up to it, the held-out set's
+// (`.later`) from those after, so no fitted feature reads held-out data, and a candidate's test
+// on the held-out half meets the kinematics there, not only the later events chaos reshuffles
+// (study 35). Dated at the first lean to that side in its part (where the mismatch is located),
+// but read from every lean at once, so its date does not move the held-out split: on the tower
+// benchmark the three levers moved it from 12.87 to 11.74 s, before the COM's mismatched
+// impacts, and the benchmark ended "Unexplained" (study 34; study 28 met the same).
 template <class Add>
 void lever_features(const AnalysedBody& body, const std::vector<AnalysedBody>& bodies, const std::vector<double>* travel,
-                    const analysis::AnalysisParameters& p, ChannelGainSd gains, Add& add) {
+                    const analysis::AnalysisParameters& p, ChannelGainSd gains, double held_after, Add& add) {
   const auto& c = body.motion.channels;
   if (c[analysis::kUplift].empty() || (c[analysis::kRockX].empty() && c[analysis::kRockY].empty())) return;
   const auto channel = [&](int i) { return c[i].empty() ? nullptr : &c[i]; };
-  const PivotLevers levers = pivot_levers(body.motion.time, channel(analysis::kRockX), channel(analysis::kRockY),
-                                          c[analysis::kUplift], travel, on_still_support(body, bodies),
-                                          body.geometry.com_height, kLeverTilt * p.angle_noise, kLeverMinLean, p.length_noise);
-  for (int axis : {0, 1})
-    for (int side : {0, 1}) {
-      const double lever = levers.lever(axis, side);
-      add(fmt::format("{}.lever_{}", channel_names()[axis], side == 0 ? "pos" : "neg"), lever, levers.onset(axis, side),
-          std::max(levers.sd(axis, side), std::hypot(gains.sensor, gains.sensor) * std::abs(lever)), "rock", false,
-          false);
-    }
+  const std::vector<bool> support = on_still_support(body, bodies);
+  for (const bool later : {false, true}) {
+    if (later && !std::isfinite(held_after)) break;
+    std::vector<bool> use = support;
+    for (std::size_t k = 0; k < use.size(); ++k) use[k] = use[k] && (body.motion.time[k] > held_after) == later;
+    const PivotLevers levers = pivot_levers(body.motion.time, channel(analysis::kRockX), channel(analysis::kRockY),
+                                            c[analysis::kUplift], travel, use, body.geometry.com_height,
+                                            kLeverTilt * p.angle_noise, kLeverMinLean, p.length_noise);
+    for (int axis : {0, 1})
+      for (int side : {0, 1}) {
+        const double lever = levers.lever(axis, side);
+        add(fmt::format("{}.lever_{}{}", channel_names()[axis], side == 0 ? "pos" : "neg", later ? ".later" : ""), lever,
+            levers.onset(axis, side), std::max(levers.sd(axis, side), std::hypot(gains.sensor, gains.sensor) * std::abs(lever)),
+            "rock", false, false);
+      }
+  }
 }
 
 // `recording` with `analysis_nominal` in place of its own (its geometry and noise thresholds).
@@ -275,7 +285,7 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 }
 
 Features event_features(const Recording& recording, const json& analysis_nominal, const SlipReference* reference,
-                        ChannelGainSd gains) {
+                        ChannelGainSd gains, double held_after) {
   const Recording r = with_nominal(recording, analysis_nominal);
   const analysis::AnalysisParameters p = parameters_for(analysis_nominal);
   const double dt = sample_step(r.time), end = r.time.back();
@@ -322,7 +332,7 @@ Features event_features(const Recording& recording, const json& analysis_nominal
         add(ch + ".dominant_frequency", comparison::spectrum(body.motion.time, body.motion.channels[axis]).dominant_frequency,
             0, 1 / (end - r.time.front()), "rock", false);
     }
-    lever_features(body, bodies, r.table_channel('d', 'x'), p, gains, add);
+    lever_features(body, bodies, r.table_channel('d', 'x'), p, gains, held_after, add);
     double total_slip = 0;
     const std::vector<analysis::SlipEvent>* reference_slips = nullptr;
     if (reference)
@@ -668,7 +678,7 @@ class Search {
   // sensor's correction of the recording, which can split or drop a slip at the detection
   // threshold, renames none of the others.
   Features recorded_features(const Recording& recording, std::size_t r) const {
-    return prefixed(event_features(recording, recording.nominal, &slip_references_[r], gain_sd()), r);
+    return prefixed(event_features(recording, recording.nominal, &slip_references_[r], gain_sd(), held_after_), r);
   }
 
   // Features of every job (prefixed with the recording number when there are
@@ -736,12 +746,16 @@ class Search {
     for (const MeasurementIssue& m : rest_drifts(recorded, job.recording, sim))
       add_drift(sim, m.channel, m.drift, recorded.time.front());
     add_measurement_noise(sim, noise_for(recorded, job.seed, job.gains));
-    return prefixed(event_features(sim, recorded.nominal, &slip_references_[job.recording], gain_sd()), job.recording);
+    return prefixed(event_features(sim, recorded.nominal, &slip_references_[job.recording], gain_sd(), held_after_),
+                    job.recording);
   }
 
   // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,
   // a profile point runs only to `end` and is compared there alone, against the recording and
   // the ensemble's scatter on the same window.
+  // The held-out split by time (event_features' `held_after`), with one recording held out by time.
+  void set_held_out_split(double split) { held_after_ = split; }
+
   void set_window(double end) {
     window_end_ = end;
     for (const Recording& r : recordings_) windows_.push_back(up_to(r, end));
@@ -807,6 +821,7 @@ class Search {
   std::string directory_;
   int batches_ = 0;
   double window_end_ = signal::kNaN;  // s, the profiles' window's end (NaN: profiles run whole)
+  double held_after_ = kInfinity;     // s, the held-out split by time (infinite: none by time)
   std::vector<Recording> windows_;    // the recordings cut there
   std::vector<SlipReference> slip_references_;  // the slips of each recording as given, which every run's are matched to
   double step_share_ = 0.0;           // the model's time step over its critical step (0: steps as given)
@@ -1444,6 +1459,7 @@ Diagnosis Diagnoser::run() {
   for (const Hypothesis& h : options_.hypotheses)
     for (const StatedValue& v : h) hypothesis_candidate(v);
   held_ = held_out_rule(recordings_, d_.notes);
+  if (held_.first_recording == 0) search_.set_held_out_split(held_.split);
   if (held_.first_recording == 0 && up_to(recordings_.front(), held_.split).time.size() >= kMinWindowSamples) {
     search_.set_window(held_.split);
     d_.notes.push_back(fmt::format("profiles: run to t = {:.2f} s and compared there (the fit window)", held_.split));

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -112,13 +113,16 @@ std::vector<int> matched_slips(const std::vector<analysis::SlipEvent>& slips,
 // reference's slip i it is matched to (matched_slips); one matched to none is numbered on
 // after the reference's, in time order (an event the reference lacks). Without a reference,
 // slips are numbered in time order. `gains`: the calibration of the channels, the floor of a
-// feature that is a ratio of two (the table carry, the pivot levers).
+// feature that is a ratio of two (the table carry, the pivot levers). `held_after`: the held-out
+// split (s), where a feature read from the whole record (the pivot levers) is read apart on each
+// side; infinite: read whole.
 struct ChannelGainSd {
   double table = 0;   // relative s.d. of the recorded table acceleration's gain
   double sensor = 0;  // relative s.d. of each recorded body channel's gain
 };
 Features event_features(const Recording& recording, const nlohmann::json& analysis_nominal,
-                        const SlipReference* reference = nullptr, ChannelGainSd gains = {});
+                        const SlipReference* reference = nullptr, ChannelGainSd gains = {},
+                        double held_after = std::numeric_limits<double>::infinity());
 
 // MeasurementIssue::channel of a delay of every body channel (the specimen's clock).
 inline const std::string kEveryBody = "*";

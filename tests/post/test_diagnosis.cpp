@@ -906,6 +906,24 @@ TEST(DiagnosisFeatures, ReadsACentreOfMassOffFromTheLeverOnEachSide) {
   EXPECT_NEAR((neg.value - pos.value) / 2, 0.012, 3 * std::hypot(pos.floor, neg.floor) / 2);
   EXPECT_LT(pos.time, neg.time);  // released leaning to +x
   EXPECT_FALSE(pos.splits);  // read from the whole record: its date does not move the held-out split
+
+  // Split at the third impact, as the held-out rule splits a record: each part reads its own
+  // levers, the later ones dated after the split (held out), both sides near the truth.
+  const double split = f.at("block.rock_x.impact3.time").value;
+  const diagnosis::Features g = diagnosis::event_features(r, r.nominal, nullptr, {}, split);
+  for (const char* side : {"pos", "neg"}) {
+    const std::string name = fmt::format("block.rock_x.lever_{}", side);
+    ASSERT_TRUE(g.count(name) && g.count(name + ".later")) << name;
+    const diagnosis::FeatureValue& early = g.at(name);
+    const diagnosis::FeatureValue& later = g.at(name + ".later");
+    std::cout << fmt::format("measured: {} up to {:.3f} s {:.5f} +- {:.5f}, after it {:.5f} +- {:.5f}\n", side, split,
+                             early.value, early.floor, later.value, later.floor);
+    const double truth = side == std::string("pos") ? 0.088 : 0.112;
+    EXPECT_NEAR(early.value, truth, 3 * early.floor + 2e-3);
+    EXPECT_NEAR(later.value, truth, 3 * later.floor + 2e-3);
+    EXPECT_LE(early.time, split);
+    EXPECT_GT(later.time, split);
+  }
 }
 
 // A small block standing on the block rides the block's carry by the table: the carry is a
