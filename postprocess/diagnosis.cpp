@@ -750,12 +750,12 @@ class Search {
                     job.recording);
   }
 
-  // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,
-  // a profile point runs only to `end` and is compared there alone, against the recording and
-  // the ensemble's scatter on the same window.
   // The held-out split by time (event_features' `held_after`), with one recording held out by time.
   void set_held_out_split(double split) { held_after_ = split; }
 
+  // The profiles' window (docs/diagnose.md, step 4): with the features after `end` held out,
+  // a profile point runs only to `end` and is compared there alone, against the recording and
+  // the ensemble's scatter on the same window.
   void set_window(double end) {
     window_end_ = end;
     for (const Recording& r : recordings_) windows_.push_back(up_to(r, end));
