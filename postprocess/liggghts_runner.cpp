@@ -32,6 +32,19 @@ std::string mpirun(int processes) {
   return command + fmt::format(" -np {}", processes);
 }
 
+// A single rank starts as an Open MPI singleton, which by default forks a PMIx server and
+// probes every transport: 0.50 s of a 20 s tower run's 2 s, idle. Isolated and on the ob1
+// transport it starts in 0.11 s (docs/benchmarks.md, "Single-rank start-up"); a diagnosis
+// runs hundreds. A variable the user set is kept.
+std::string singleton_environment() {
+  std::string command;
+  for (const char* var : {"OMPI_MCA_ess_singleton_isolated=1", "OMPI_MCA_pml=ob1"}) {
+    const std::string name(var, std::strchr(var, '=') - var);
+    if (!std::getenv(name.c_str())) command += std::string(command.empty() ? "env " : "") + var + " ";
+  }
+  return command;
+}
+
 // A thermo line starts with the step number.
 bool thermo_step(const std::string& line, long* step) {
   std::istringstream in(line);
@@ -63,7 +76,7 @@ std::string default_liggghts_executable() {
 LiggghtsOutcome run_liggghts(const LiggghtsRun& run, const std::function<void(long, long)>& progress) {
   // stdbuf: LIGGGHTS writes its screen output through C stdio, block-buffered
   // into a pipe; line buffering lets progress arrive as it happens.
-  const std::string launcher = (run.processes > 1 ? mpirun(run.processes) + " " : "") + "stdbuf -oL ";
+  const std::string launcher = (run.processes > 1 ? mpirun(run.processes) + " " : singleton_environment()) + "stdbuf -oL ";
   const std::string command = "cd " + shell_quote(run.directory) + " && " + launcher +
                               shell_quote(run.executable) + " -in " + shell_quote(run.script) + " -log " +
                               shell_quote(run.log) + " < /dev/null 2>&1";
