@@ -59,6 +59,7 @@ TEST(LiggghtsRunner, SingleRanksSideBySideAllStart) {
 TEST(LiggghtsRunner, AFailedStartSaysWhatItPrinted) {
   test::TempDir dir;
   unsetenv("OMPI_MCA_pml");
+  unsetenv("OMPI_MCA_ess_singleton_isolated");
   const LiggghtsOutcome o = run_liggghts({failing_executable(dir), dir.path().string(), "in", "log", 1}, [](long, long) {});
   EXPECT_EQ(o.status, 3);
   EXPECT_NE(o.error.find("exited with status 3"), std::string::npos) << o.error;
@@ -69,6 +70,7 @@ TEST(LiggghtsRunner, AFailedStartSaysWhatItPrinted) {
 TEST(LiggghtsRunner, KeepsTheUsersOpenMpiVariables) {
   test::TempDir dir;
   setenv("OMPI_MCA_pml", "cm", 1);
+  unsetenv("OMPI_MCA_ess_singleton_isolated");
   const LiggghtsOutcome o = run_liggghts({failing_executable(dir), dir.path().string(), "in", "log", 1}, [](long, long) {});
   unsetenv("OMPI_MCA_pml");
   EXPECT_NE(o.error.find("pml=cm isolated=1"), std::string::npos) << o.error;
