@@ -827,15 +827,6 @@ class Search {
   double step_share_ = 0.0;           // the model's time step over its critical step (0: steps as given)
 };
 
-double to_value(const Candidate& c, double u) {
-  return c.log_scale ? std::exp(std::log(c.lower) + u * std::log(c.upper / c.lower)) : c.lower + u * (c.upper - c.lower);
-}
-double to_scaled(const Candidate& c, double v) {
-  return c.log_scale ? std::log(v / c.lower) / std::log(c.upper / c.lower) : (v - c.lower) / (c.upper - c.lower);
-}
-// What one scaled unit is in the value's units (in ln of the value on a log scale): an s.e.
-// in scaled units times this is the s.e. reported.
-double scaled_unit(const Candidate& c) { return c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower; }
 
 // How the model after a chi2 drop d fits against the one before: "better" or "worse" beyond
 // the Monte Carlo bound and kIndistinguishable, else "alike" (similar candidates meet so).
@@ -1063,11 +1054,7 @@ FittedCandidate fit_sensor(const Candidate& c, const std::vector<Recording>& rec
 // calibrated sensor reads (a gain 25 % off, a clock 0.1 s late), so the correction stands in
 // for something the range cannot hold, as physics would (case14 of the proof study: a table's
 // vertical motion, fitted as every body's gain at 1.25, then the pedestal's at 1.25 again).
-bool at_range_end(const FittedCandidate& f) {
-  const Candidate& c = f.candidate;
-  const double half_step = 0.5 * (c.upper - c.lower) / kSensorSteps;
-  return f.value < c.lower + half_step || f.value > c.upper - half_step;
-}
+bool at_range_end(const FittedCandidate& f) { return at_range_end(f.candidate, f.value, 0.5 / kSensorSteps); }
 
 MeasurementIssue sensor_issue(const FittedCandidate& f, const std::vector<std::string>& alike) {
   MeasurementIssue m;

@@ -68,6 +68,13 @@ struct Candidate {
   std::vector<double> shapes;          // the values the settle tries (shape among them)
   std::function<void(nlohmann::json&, double, double)> apply_shaped;  // sets (value, shape) in a document
 };
+// A candidate's value v and its scaled position u in [0, 1] over its range (in ln v on a log
+// scale), and what one scaled unit is in the value's units (in ln of it on a log scale).
+double to_value(const Candidate& c, double u);
+double to_scaled(const Candidate& c, double v);
+double scaled_unit(const Candidate& c);
+// v lies within scaled_tolerance of an end of c's range: a fit there found no minimum inside it.
+bool at_range_end(const Candidate& c, double value, double scaled_tolerance);
 // c with its second parameter at `shape` (apply set from apply_shaped).
 Candidate reshaped(const Candidate& c, double shape);
 // a and b are of similar signature: b's entry is listed as similar to a's, and two body

@@ -77,6 +77,19 @@ const CatalogueEntry* catalogue_entry(const std::string& name) {
   return e == kCatalogue.end() ? nullptr : &*e;
 }
 
+double to_value(const Candidate& c, double u) {
+  return c.log_scale ? std::exp(std::log(c.lower) + u * std::log(c.upper / c.lower)) : c.lower + u * (c.upper - c.lower);
+}
+double to_scaled(const Candidate& c, double v) {
+  return c.log_scale ? std::log(v / c.lower) / std::log(c.upper / c.lower) : (v - c.lower) / (c.upper - c.lower);
+}
+double scaled_unit(const Candidate& c) { return c.log_scale ? std::log(c.upper / c.lower) : c.upper - c.lower; }
+
+bool at_range_end(const Candidate& c, double value, double scaled_tolerance) {
+  const double u = to_scaled(c, value);
+  return u < scaled_tolerance || u > 1 - scaled_tolerance;
+}
+
 // Two body candidates are alike only on the same body: a stack's tower and pedestal answer to
 // different features, and each meeting costs a test.
 Candidate reshaped(const Candidate& c, double shape) {

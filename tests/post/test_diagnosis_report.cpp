@@ -141,5 +141,33 @@ TEST(DiagnosisVerdict, SaysWhatARivalThatFitsAsWellWouldBe) {
   EXPECT_DOUBLE_EQ(j[0]["value"].get<double>(), 0.00817);
 }
 
+// A value the settle left at its range's end is a bound, not a minimum: the verdict says so
+// with the range, and the JSON flags it; a value inside the range, or a stiffness inside its
+// log range, is stated as usual.
+TEST(DiagnosisVerdict, SaysWhenAValueIsTheEndOfTheRangeSearched) {
+  Diagnosis d;
+  d.feature_count = 103, d.chi2_final = 96.6, d.chi2_noise_limit = 139.3;
+  Effect e;
+  e.verdict = "missing physics";
+  e.fit.candidate.name = "base_not_flat[tower:+x+y]", e.fit.candidate.unit = "m";
+  e.fit.candidate.lower = -0.03618, e.fit.candidate.upper = 0.03618, e.fit.candidate.nominal = 0;
+  e.fit.value = 0.03618, e.fit.standard_error = 0.0055;
+  d.effects.push_back(e);
+  const std::string words = "It lies at the end of the range searched (-0.0362 m to 0.0362 m)";
+  EXPECT_NE(verdict_text(d).find(words), std::string::npos) << verdict_text(d);
+  EXPECT_TRUE(diagnosis_json(d)["effects"][0]["at_range_end"].get<bool>());
+  d.effects[0].fit.value = 0.016;
+  EXPECT_EQ(verdict_text(d).find("end of the range"), std::string::npos) << verdict_text(d);
+  EXPECT_FALSE(diagnosis_json(d)["effects"][0]["at_range_end"].get<bool>());
+  Candidate& k = d.effects[0].fit.candidate;
+  k.name = "interface_compliance[pedestal/tower]", k.unit = "N/m^3", k.log_scale = true;
+  k.lower = 1e7, k.upper = 1e11, k.nominal = 1e10;
+  d.effects[0].fit.value = 1e7 * (1 + 1e-9);
+  EXPECT_NE(verdict_text(d).find("end of the range searched (1e+07 N/m^3 to 1e+11 N/m^3)"), std::string::npos)
+      << verdict_text(d);
+  d.effects[0].fit.value = 1.61e8;
+  EXPECT_EQ(verdict_text(d).find("end of the range"), std::string::npos) << verdict_text(d);
+}
+
 }  // namespace
 }  // namespace freestand::diagnosis
