@@ -20,6 +20,15 @@ Recording run(const std::string& channel, double level) {
   return r;
 }
 
+// An accepted missing-physics effect: candidate `name` (unit m) at `value` +- `se`.
+Effect missing_physics(const std::string& name, double value, double se) {
+  Effect e;
+  e.verdict = "missing physics";
+  e.fit.candidate.name = name, e.fit.candidate.unit = "m";
+  e.fit.value = value, e.fit.standard_error = se;
+  return e;
+}
+
 int count_lines(const std::string& html) {
   const std::regex line("stroke-linejoin=\"round\"");
   return static_cast<int>(std::distance(std::sregex_iterator(html.begin(), html.end(), line), std::sregex_iterator()));
@@ -121,11 +130,8 @@ TEST(DiagnosisVerdict, SaysATimeStepInSecondsAndWhenTheFinestWasAdopted) {
 TEST(DiagnosisVerdict, SaysWhatARivalThatFitsAsWellWouldBe) {
   Diagnosis d;
   d.feature_count = 47, d.chi2_final = 14.8, d.chi2_noise_limit = 72.5;
-  Effect e;
-  e.verdict = "missing physics";
-  e.fit.candidate.name = "com_offset_x[block]", e.fit.candidate.unit = "m";
+  Effect e = missing_physics("com_offset_x[block]", -0.0158, 0.0019);
   e.fit.candidate.description = "the centre of mass of 'block' is off its axis along x";
-  e.fit.value = -0.0158, e.fit.standard_error = 0.0019;
   FittedCandidate inset;
   inset.candidate.name = "edge_inset[block]", inset.candidate.unit = "m";
   inset.candidate.description = "'block' rocks on edges inset from its geometric base edges";
@@ -147,11 +153,8 @@ TEST(DiagnosisVerdict, SaysWhatARivalThatFitsAsWellWouldBe) {
 TEST(DiagnosisVerdict, SaysWhenAValueIsTheEndOfTheRangeSearched) {
   Diagnosis d;
   d.feature_count = 103, d.chi2_final = 96.6, d.chi2_noise_limit = 139.3;
-  Effect e;
-  e.verdict = "missing physics";
-  e.fit.candidate.name = "base_not_flat[tower:+x+y]", e.fit.candidate.unit = "m";
+  Effect e = missing_physics("base_not_flat[tower:+x+y]", 0.03618, 0.0055);
   e.fit.candidate.lower = -0.03618, e.fit.candidate.upper = 0.03618, e.fit.candidate.nominal = 0;
-  e.fit.value = 0.03618, e.fit.standard_error = 0.0055;
   d.effects.push_back(e);
   const std::string words = "It lies at the end of the range searched (-0.0362 m to 0.0362 m)";
   EXPECT_NE(verdict_text(d).find(words), std::string::npos) << verdict_text(d);
