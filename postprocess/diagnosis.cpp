@@ -2240,7 +2240,7 @@ void Diagnoser::finish() {
   const std::vector<Features> final_members = members_of(ensemble_runs_, recordings_.size());
   const auto [closing, closing_members] = closing_target(final_members);
   d_.chi2_final = closing.ensemble_chi2(closing_members);
-  d_.closing_members = static_cast<int>(closing_members.size() / recordings_.size());
+  d_.closing_members = static_cast<int>(closing_members.size());  // each member merged over the recordings
   for (const auto& [name, f] : target_.recorded)
     d_.features.push_back({name, f.mode, f.time, f.present ? f.value : signal::kNaN,
                            Target::ensemble_mean(name, nominal_members_, -1), Target::ensemble_mean(name, closing_members, -1),
