@@ -827,7 +827,6 @@ class Search {
   double step_share_ = 0.0;           // the model's time step over its critical step (0: steps as given)
 };
 
-
 // How the model after a chi2 drop d fits against the one before: "better" or "worse" beyond
 // the Monte Carlo bound and kIndistinguishable, else "alike" (similar candidates meet so).
 std::string preference(const Drop& d) {

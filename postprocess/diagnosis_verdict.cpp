@@ -254,8 +254,7 @@ json diagnosis_json(const Diagnosis& d) {
     json alike = json::array();
     for (const FittedCandidate& g : e.indistinguishable) alike.push_back(fitted(g));
     j.update({{"far_off", e.far_off}, {"at_range_end", at_searched_end(e.fit)}, {"indistinguishable_from", alike},
-              {"similar_signature", similar},
-              {"candidates_tried", e.candidates_tried}, {"round", e.round}});
+              {"similar_signature", similar}, {"candidates_tried", e.candidates_tried}, {"round", e.round}});
     if (e.verdict == "measurement") j["channel"] = e.fit.candidate.where;
     out[e.verdict == "recalibrated" ? "recalibrated" : e.verdict == "measurement" ? "measurement_issues" : "effects"].push_back(j);
   }
