@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paired oracle of the proof study (docs/diagnose.md, study 11): can the event features tell
+"""The paired oracle of the proof study (docs/diagnose-studies.md, study 11): can the event features tell
 each case's concealed effect at all? Every effect case of a case set (bench/generate_diagnose_cases.sh)
 is diagnosed once more with two `--hypothesis` read from the answer key (a study of the method's
 power, never part of a verdict): the recorded table acceleration's true gain alone (a measurement

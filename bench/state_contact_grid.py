@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A copy of a diagnose case set (bench/generate_diagnose_cases.sh) whose recordings state every
-body's contact grid (docs/diagnose.md, study 18): each `bodies[i].nodes` of every NAME.nominal.json
+body's contact grid (docs/diagnose-studies.md, study 18): each `bodies[i].nodes` of every NAME.nominal.json
 set to surface with PER_EDGE segments per edge, so the diagnosis model runs on that grid (the grid
 check keeps a stated grid). The answer keys are copied for bench/diagnose_oracle.py.
 

@@ -689,7 +689,7 @@ class Search {
   // at rest of the recording against the run (rest_drifts) is added to the run. Not taken out
   // of the recording once, against the model as given: what a candidate explains (a vertically
   // moving table carrying a resting body) would be corrected away before it was tried, and the
-  // right candidate fail against the corrected record (docs/diagnose.md, study 3).
+  // right candidate fail against the corrected record (docs/diagnose-studies.md, study 3).
   // All jobs go to one pool of options_.jobs workers, and each run's features are taken on its
   // worker's thread as it finishes: no core waits for a batch's slowest run or for the analysis.
   std::vector<Features> run(const std::vector<Job>& jobs, const std::string& stage, std::vector<Recording>* raw = nullptr) {

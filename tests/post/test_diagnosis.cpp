@@ -820,7 +820,7 @@ TEST(Diagnosis, NamesAndRecoversTablePitch) {
 // the standing block's uplift rises with the table at k 0.32 m/s (its mean speed along x): a
 // sensor drift would look the same at rest. It is physics here: the vertical candidate explains
 // it, and the diagnosis must name it, not correct the recording for a drift first and then find
-// the right candidate failing the held-out run (docs/diagnose.md, study 3, case14). Two runs, +x
+// the right candidate failing the held-out run (docs/diagnose-studies.md, study 3, case14). Two runs, +x
 // then -x (the table rises, then sinks), the second held out. Tolerance 0.05 (a quarter of k):
 // the last refinement's spacing is 0.03 (a bracket of 0.27 of the +-0.5 range, each side in
 // thirds twice); the rest is the trade-off with the table gain, which scales the rocking pulse as k's
@@ -1035,7 +1035,7 @@ TEST(Diagnosis, MeasuresASlidersClockOffsetFromItsSlipOnsets) {
 
 // The same clock when the recording has a slip the model lacks, first of all (a knock of 3 mm
 // and back): the slips numbered in order would compare every later onset with another event's
-// (case22 of the proof study, docs/diagnose.md study 21); matched by time they meet their own.
+// (case22 of the proof study, docs/diagnose-studies.md study 21); matched by time they meet their own.
 TEST(Diagnosis, MeasuresASlidersClockOffsetPastASlipTheModelLacks) {
   test::TempDir dir;
   const Recording r = late_slider(dir, 0.003);
