@@ -817,26 +817,30 @@ Recording run_scenario_document(const json& document, const std::string& directo
   return results_as_recording(read_results((fs::path(directory) / files.results).string()));
 }
 
+std::string table_acceleration_csv(const Recording& recording) {
+  std::string table = "t";
+  std::vector<const std::vector<double>*> columns;
+  for (char axis : {'x', 'y', 'z'})
+    if (const std::vector<double>* a = recording.table_channel('a', axis)) table += std::string(",a") + axis, columns.push_back(a);
+  if (columns.empty()) return "";
+  table += "\n";
+  for (std::size_t k = 0; k < recording.time.size(); ++k) {
+    table += fmt::format("{:.17g}", recording.time[k] - recording.time.front());
+    for (const auto* c : columns) {
+      if (!std::isfinite((*c)[k]))
+        throw InputError(fmt::format("{}: table acceleration lost at t = {} s: cannot replay the table",
+                                     recording.path, recording.time[k]));
+      table += fmt::format(",{:.17g}", (*c)[k]);
+    }
+    table += "\n";
+  }
+  return table;
+}
+
 Recording simulate_recording(const json& model, const Recording& recording, const std::string& directory) {
   fs::create_directories(directory);
-  if (model.contains("table_motion")) {
-    std::string table = "t";
-    std::vector<const std::vector<double>*> columns;
-    for (char axis : {'x', 'y', 'z'})
-      if (const std::vector<double>* a = recording.table_channel('a', axis)) table += std::string(",a") + axis, columns.push_back(a);
-    table += "\n";
-    for (std::size_t k = 0; k < recording.time.size(); ++k) {
-      table += fmt::format("{:.17g}", recording.time[k] - recording.time.front());
-      for (const auto* c : columns) {
-        if (!std::isfinite((*c)[k]))
-          throw InputError(fmt::format("{}: table acceleration lost at t = {} s: cannot replay the table",
-                                       recording.path, recording.time[k]));
-        table += fmt::format(",{:.17g}", (*c)[k]);
-      }
-      table += "\n";
-    }
-    write_file_atomically((fs::path(directory) / "table_motion.csv").string(), table);
-  }
+  if (model.contains("table_motion"))
+    write_file_atomically((fs::path(directory) / "table_motion.csv").string(), table_acceleration_csv(recording));
   Recording simulated = run_scenario_document(model, directory);
   for (double& t : simulated.time) t += recording.time.front();
   return simulated;

@@ -68,6 +68,11 @@ nlohmann::json recording_scenario(const nlohmann::json& model, const Recording& 
 // InputError with the LIGGGHTS error when the run fails.
 Recording run_scenario_document(const nlohmann::json& document, const std::string& directory);
 
+// The recording's table acceleration as the CSV a recording_scenario's table
+// record reads (t from 0, then ax, ay, az as recorded); empty when it has no
+// table channel. Throws InputError where a sample is lost: a replay needs all.
+std::string table_acceleration_csv(const Recording& recording);
+
 // Simulates `recording` under `model` in `directory` (created; left in place)
 // and returns the results as a recording. Throws InputError with the
 // LIGGGHTS error when the run fails.

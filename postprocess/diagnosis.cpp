@@ -2289,13 +2289,19 @@ void Diagnoser::against_improved(const std::vector<Features>& final_members) {
 }
 
 // 4. The improved scenario: the model that was judged, so that `freestand run` of it simulates
-// what the verdict is about. The user's settings with the first recording's bodies, interfaces
-// and gravity, as every run had them (recording_scenario: a SCENARIO body's own fields, its
-// contact grid among them, never ran), each body on the grid it ran on, and the effects.
+// what the verdict is about. The first recording's run as every run had it (recording_scenario:
+// the user's settings with the recording's bodies, interfaces and gravity, its duration, rate and
+// table acceleration, so a SCENARIO's own table motion and body fields never ran), each body on
+// the grid it ran on, and the effects. The table acceleration goes into `improved_table`.
 json Diagnoser::improved_scenario() {
-  json improved = scenario_;
-  for (const char* key : kNominalModelKeys)
-    if (recordings_.front().nominal.contains(key)) improved[key] = recordings_.front().nominal[key];
+  const Recording& first = recordings_.front();
+  json improved = recording_scenario(scenario_, first, options_.improved_table_file);
+  d_.improved_table = table_acceleration_csv(first);
+  improved["ground_motion"] = fmt::format("the table acceleration recorded in {}, replayed", first.path);
+  improved["description"] = fmt::format("The model freestand diagnose judged on {}, with the effects it named{}", first.path,
+                                        scenario_.value("description", json()).is_string()
+                                            ? ". The scenario given: " + scenario_["description"].get<std::string>()
+                                            : std::string());
   const json& ran = base_.front()["bodies"];  // the nominal's bodies, in its order, with the grid check's grid
   for (std::size_t i = 0; i < ran.size(); ++i)
     if (ran[i].contains("nodes")) improved["bodies"][i]["nodes"] = ran[i]["nodes"];

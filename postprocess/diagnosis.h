@@ -174,6 +174,8 @@ struct Options {
   std::vector<Hypothesis> hypotheses;  // each tested against the model as given at alpha / (2 x their number)
   bool shooting = false;      // multiple shooting: cut single-body recordings at rests (shooting.h)
   std::string work_directory; // run directories (empty: a fresh temporary one, removed)
+  std::string improved_table_file = "table_motion.csv";  // the improved scenario's table record (Diagnosis::
+                               // improved_table), relative to the improved scenario's folder
   std::function<void(const std::string& stage, long done, long total)> progress;
 };
 
@@ -264,7 +266,10 @@ struct Diagnosis {
   std::vector<HypothesisComparison> hypothesis_pairs;  // every two of them
   std::vector<Mismatch> unexplained;           // still beyond the threshold after the accepted effects
   std::vector<std::string> notes;              // candidates left out and why, held-out choice, ...
-  nlohmann::json improved;                     // the scenario with the effects as model options
+  nlohmann::json improved;                     // the scenario with the effects as model options, replaying the
+                                               // first recording (its duration, rate and table acceleration)
+  std::string improved_table;                  // CSV of that table acceleration, to be written as
+                                               // Options::improved_table_file; empty: no table channel
   std::vector<FeatureRow> features;            // every recorded feature against both models
   std::vector<Recording> recorded;             // the recordings, corrected for accepted measurement issues
   std::vector<Recording> simulated_nominal, simulated_final;  // noise-free runs of the model as given and improved

@@ -102,6 +102,11 @@ int diagnose_command(DiagnoseOptions& o) {
   }
   if (recordings.empty()) throw InputError("diagnose: no recording given (NAME.csv with NAME.nominal.json, or NAME.h5)");
   for (const std::string& h : o.hypotheses) o.options.hypotheses.push_back(parsed_hypothesis(h));
+  const fs::path output = !o.output.empty() ? o.output
+                          : (fs::path(scenario_path.empty() ? recordings.front().path : scenario_path).stem().string() +
+                             ".diagnosed.json");
+  const fs::path table = output.parent_path() / (output.stem().string() + ".table.csv");  // what it replays
+  o.options.improved_table_file = table.filename().string();
   fmt::print("freestand diagnose: {} recording{} against {}, {} jobs\n", recordings.size(),
              recordings.size() > 1 ? "s" : "", scenario_path.empty() ? "the recordings' nominal" : scenario_path,
              o.options.jobs);
@@ -121,11 +126,10 @@ int diagnose_command(DiagnoseOptions& o) {
   fmt::print("\n{}\n", d.verdict);
   print_candidates(d);
   for (const std::string& n : d.notes) fmt::print("  note: {}\n", n);
-  const std::string output = !o.output.empty() ? o.output
-                             : scenario_path.empty() ? fs::path(recordings.front().path).stem().string() + ".diagnosed.json"
-                                                     : fs::path(scenario_path).stem().string() + ".diagnosed.json";
-  write_file_atomically(output, d.improved.dump(2) + "\n");
-  fmt::print("  improved scenario: {} ({} simulations)\n", output, d.simulations);
+  if (!d.improved_table.empty()) write_file_atomically(table.string(), d.improved_table);
+  write_file_atomically(output.string(), d.improved.dump(2) + "\n");
+  fmt::print("  improved scenario: {} ({} simulations){}\n", output.string(), d.simulations,
+             d.improved_table.empty() ? "" : ", replaying the table acceleration in " + table.string());
   if (!o.json_file.empty()) write_file_atomically(o.json_file, diagnosis::diagnosis_json(d).dump(2) + "\n");
   if (!o.report.empty()) {
     HtmlReport report("freestand diagnose");
@@ -151,7 +155,7 @@ void add_diagnose_command(CLI::App& app) {
       "holds on held-out data. Prints a verdict and writes the improved scenario.");
   sub->add_option("inputs", o->inputs, "[SCENARIO.json] RECORDING...: the model (optional) and recordings")
       ->required();
-  sub->add_option("-o,--output", o->output, "improved scenario (default: SCENARIO or RECORDING stem + .diagnosed.json)");
+  sub->add_option("-o,--output", o->output, "improved scenario, replaying the first recording (default: SCENARIO or RECORDING stem + .diagnosed.json); its table acceleration is written beside it as STEM.table.csv");
   sub->add_option("--json", o->json_file, "write the diagnosis (effects, recalibrations, measurement issues, ...) as JSON");
   sub->add_option("--report", o->report, "write an HTML report (verdict, before/after overlays, candidates, features)");
   sub->add_option("--jobs", o->options.jobs, "simulations at a time")->capture_default_str()->check(CLI::PositiveNumber);
