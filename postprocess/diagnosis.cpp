@@ -207,7 +207,10 @@ std::vector<bool> on_still_support(const AnalysedBody& body, const std::vector<A
 // (study 35). Dated at the first lean to that side in its part (where the mismatch is located),
 // but read from every lean at once, so its date does not move the held-out split: on the tower
 // benchmark the three levers moved it from 12.87 to 11.74 s, before the COM's mismatched
-// impacts, and the benchmark ended "Unexplained" (study 34; study 28 met the same).
+// impacts, and the benchmark ended "Unexplained" (study 34; study 28 met the same). Beside the
+// levers, the pivot's sink (`pivot_sink`, dated at the first lean): a compliant contact sinks
+// the pivot as the root of the tilt, an inset edge does not (study 38), so the two, which fit
+// a tower's rocking events alike, are told apart.
 template <class Add>
 void lever_features(const AnalysedBody& body, const std::vector<AnalysedBody>& bodies, const std::vector<double>* travel,
                     const analysis::AnalysisParameters& p, ChannelGainSd gains, double held_after, Add& add) {
@@ -229,6 +232,10 @@ void lever_features(const AnalysedBody& body, const std::vector<AnalysedBody>& b
             levers.onset(axis, side), std::max(levers.sd(axis, side), std::hypot(gains.sensor, gains.sensor) * std::abs(lever)),
             "rock", false, false);
       }
+    // The sink reads uplift over the root of an angle: each gain's error carries into it.
+    add(fmt::format("pivot_sink{}", later ? ".later" : ""), levers.sink,
+        levers.onset.array().isNaN().select(kInfinity, levers.onset).minCoeff(),
+        std::max(levers.sink_sd, std::hypot(gains.sensor, 0.5 * gains.sensor) * std::abs(levers.sink)), "rock", false, false);
   }
 }
 

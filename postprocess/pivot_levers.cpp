@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "signal_tools.h"
 
@@ -26,7 +28,8 @@ PivotLevers pivot_levers(const std::vector<double>& time, const std::vector<doub
                          const std::vector<double>* rock_y, const std::vector<double>& uplift,
                          const std::vector<double>* travel, const std::vector<bool>& use, double height,
                          double min_tilt, double min_time, double noise) {
-  PivotLevers out{Eigen::Matrix2d::Constant(kNaN), Eigen::Matrix2d::Constant(kNaN), Eigen::Matrix2d::Constant(kNaN)};
+  PivotLevers out{Eigen::Matrix2d::Constant(kNaN), Eigen::Matrix2d::Constant(kNaN), Eigen::Matrix2d::Constant(kNaN), kNaN,
+                  kNaN};
   const std::vector<double>* rock[2] = {rock_x, rock_y};
   const auto theta = [&](int axis, std::size_t k) { return rock[axis] ? (*rock[axis])[k] : 0.0; };
   std::vector<std::size_t> rows;
@@ -59,9 +62,10 @@ PivotLevers pivot_levers(const std::vector<double>& time, const std::vector<doub
     if (!unfitted_lean) kept.push_back(k);
   }
 
-  // Columns: the levers, a constant, time, the travel, the height where it is not given.
+  // Columns: the levers, a constant, time, the travel, the height where it is not given, and
+  // last the sink, fitted beside the rest for its own value only (see the header).
   const bool fit_height = !std::isfinite(height);
-  const Eigen::Index nl = static_cast<Eigen::Index>(sides.size()), m = nl + 2 + (travel ? 1 : 0) + (fit_height ? 1 : 0);
+  const Eigen::Index nl = static_cast<Eigen::Index>(sides.size()), m = nl + 3 + (travel ? 1 : 0) + (fit_height ? 1 : 0);
   Eigen::MatrixXd a(static_cast<Eigen::Index>(kept.size()), m);
   Eigen::VectorXd u(a.rows());
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
@@ -74,18 +78,25 @@ PivotLevers pivot_levers(const std::vector<double>& time, const std::vector<doub
     const double drop = 1 - std::cos(theta(0, k)) * std::cos(theta(1, k));  // the centre's fall per m of height
     a(i, nl) = 1, a(i, nl + 1) = time[k] - time[kept.front()];
     if (travel) a(i, nl + 2) = (*travel)[k];
-    if (fit_height) a(i, m - 1) = -drop;
+    if (fit_height) a(i, m - 2) = -drop;
+    a(i, m - 1) = std::sqrt(std::hypot(std::sin(theta(0, k)), std::sin(theta(1, k))));
     u(i) = uplift[k] + (fit_height ? 0.0 : height * drop);
   }
-  const Eigen::MatrixXd normal = a.transpose() * a;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all()) return out;
-  const Eigen::VectorXd coef = ldlt.solve(a.transpose() * u);
-  const Eigen::VectorXd var = ldlt.solve(Eigen::MatrixXd::Identity(m, m)).diagonal() * noise * noise;
+  const auto fit = [&](Eigen::Index columns) -> std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> {
+    const auto x = a.leftCols(columns);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(x.transpose() * x);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all()) return std::nullopt;
+    return std::make_pair(ldlt.solve(x.transpose() * u),
+                          ldlt.solve(Eigen::MatrixXd::Identity(columns, columns)).diagonal() * noise * noise);
+  };
+  const auto rigid = fit(m - 1);
+  if (!rigid) return out;
   for (Eigen::Index j = 0; j < nl; ++j) {
     const Side& s = sides[static_cast<std::size_t>(j)];
-    out.lever(s.axis, s.side) = coef(j), out.sd(s.axis, s.side) = std::sqrt(var(j)), out.onset(s.axis, s.side) = s.onset;
+    out.lever(s.axis, s.side) = rigid->first(j), out.sd(s.axis, s.side) = std::sqrt(rigid->second(j));
+    out.onset(s.axis, s.side) = s.onset;
   }
+  if (const auto sinking = fit(m)) out.sink = sinking->first(m - 1), out.sink_sd = std::sqrt(sinking->second(m - 1));
   return out;
 }
 
