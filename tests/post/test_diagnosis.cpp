@@ -961,7 +961,7 @@ TEST(DiagnosisFeatures, ReadsACentreOfMassOffFromTheLeverOnEachSide) {
 // 0.04 m wide at 0.05 to 0.15 rad: 3 to 6 rows of a 16-per-edge grid), gives -0.0172 m/sqrt(rad).
 // The simulated edge depth itself follows the formula within 4 % at 0.01-0.1 rad (a block
 // released tilted, study 38); the fitted s is less exact, since over one record's tilts the
-// root and the lever it is fitted beside trade off: measured 16 % low here (8 per edge: 20 %),
+// root and the lever it is fitted beside trade off: measured 20 % low here (8 per edge: 16 %),
 // 20 % low with the lever 5 % low on the released block once its release transient (a 10 mm
 // vertical bounce) has passed. Tolerance 25 %. On a bed 100 times stiffer the sink must read
 // under a quarter of the soft one's: the contact is then narrower than a row.
