@@ -1380,6 +1380,8 @@ class Diagnoser {
   Round profiled(int number);
   void screen(Round& r);
   std::size_t first_passing(Round& r);
+  bool fails_only_held_out(const FittedCandidate& f) const;
+  std::size_t passing_rival(Round& r, std::size_t i);
   bool passes_at(const FittedCandidate& f, double level) const;
   bool passes(const FittedCandidate& f, bool physics) const;
   TestedEnsemble on_ensemble(FittedCandidate& f, const std::string& stage,
@@ -1797,6 +1799,7 @@ void Diagnoser::screen(Round& r) {
 // asks them to improve on all the members, the screen's among them (in a build that profiled
 // along another member, Diagnosis.NamesASofterContactNotANarrowerBase's two short corners
 // screened best, held-out -58 and -51, and took two of the three tests from the stiffness).
+// One that passes its fit set but not the held-out half has its similar rivals tested next.
 std::size_t Diagnoser::first_passing(Round& r) {
   const auto rank = [&](std::size_t i) {
     if (i >= candidates_.size()) {  // a sensor's profile: its drop on every feature, as the screen's
@@ -1818,6 +1821,29 @@ std::size_t Diagnoser::first_passing(Round& r) {
     attempts += i < candidates_.size();
     test(r, i);
     if (passes(r.fits[i], i < candidates_.size())) return i;
+    if (i < candidates_.size() && fails_only_held_out(r.fits[i]))
+      if (const std::size_t j = passing_rival(r, i); j < r.fits.size()) return j;
+  }
+  return r.fits.size();
+}
+
+// A physics candidate significant on the fit set but worse on the held-out half: the mismatch
+// is real and this is not its cause (study 38: case04's edge inset, 8.6 mm for 10, was reached
+// only so, since its one-member profile's value screened worse than nothing; a softer contact
+// passed its fit set, p = 5.6e-9, and lost the held-out half once the pivot's sink read it).
+bool Diagnoser::fails_only_held_out(const FittedCandidate& f) const {
+  return held_available_ && f.held_out_delta <= 0 && f.p_value < options_.alpha / (tried_ * 2) && f.delta_bic > 0;
+}
+
+// The first candidate of a similar signature to candidate i (catalogue) whose profile dropped
+// that passes its own test, else fits.size(): the causes that explain the same mismatch
+// differently, so the one that holds on the held-out half is looked for among them.
+std::size_t Diagnoser::passing_rival(Round& r, std::size_t i) {
+  for (std::size_t j = 0; j < candidates_.size(); ++j) {
+    if (j == i || r.tested.count(j) || r.profile_delta[j] <= 0 || !of_similar_signature(candidates_[i], candidates_[j]))
+      continue;
+    test(r, j);
+    if (passes(r.fits[j], true)) return j;
   }
   return r.fits.size();
 }
