@@ -56,6 +56,7 @@ const int kSensorSteps = 40;      // steps of a sensor candidate's grid over its
 const int kAttempts = 3;           // physics candidates refined and ensemble-tested per round, in order of their chi2 drop
 const int kScreened = 2 * kAttempts;  // physics candidates screened per round (those whose profiles dropped most)
 const int kScreenMembers = 3;      // members a screened candidate runs as (a drop's jackknife needs 3 pairs)
+const int kProfileExtensions = 3;  // rungs a quick profile still falling at its outermost point goes on (2x each)
 const double kInfinity = std::numeric_limits<double>::infinity();
 const int kRefinedSpan = 5;        // points of a refined profile a parabola is fitted through (its lowest and 2 each side)
 const double kSettleReach = 3;     // the farthest the ensemble's bracket goes (settle), in steps of the fit from the nominal
@@ -881,6 +882,18 @@ struct Profile {
   std::vector<std::vector<Features>> members;  // per point, the features of each member it ran as
 };
 
+// The next rung of a quick profile whose lowest point `best` is its outermost on its side of
+// the nominal u[0]: twice as far out (the ladder's 4x straddled case21's minimum, 0.032 and
+// 0.1 rad/m about 0.07, and one member's chaos took the nearer), clamped to the range; NaN when the profile turned
+// (a point farther out on that side), the lowest is the nominal, or it is at the range's end.
+double next_rung(const Profile& p, double best) {
+  const double u0 = p.u.front(), side = best - u0;
+  if (std::abs(side) < 1e-12 || best <= 0 || best >= 1) return signal::kNaN;
+  for (double u : p.u)
+    if ((u - u0) * side > 0 && std::abs(u - u0) > std::abs(side) + 1e-12) return signal::kNaN;
+  return std::clamp(u0 + 2 * side, 0.0, 1.0);
+}
+
 // The mean chi2 of a point's members: with more than one, a member's chaotic jitter no longer
 // decides alone where a profile's minimum is.
 double mean_chi2(const Target& target, const std::vector<Features>& members, bool held_out) {
@@ -1378,6 +1391,7 @@ class Diagnoser {
   void test_hypotheses();
   bool search_round(int number);
   Round profiled(int number);
+  void extend_falling_profiles(Round& r);
   void screen(Round& r);
   std::size_t first_passing(Round& r);
   bool fails_only_held_out(const FittedCandidate& f) const;
@@ -1735,6 +1749,7 @@ Round Diagnoser::profiled(int number) {
   for (std::size_t i = 0; i < candidates_.size(); ++i)
     r.fits.push_back(summarise(candidates_[i], r.profiles[i], profile_target_, r.chi2_base, r.held_base, profile_held(),
                                false));
+  extend_falling_profiles(r);
   const std::vector<Features> members = members_of(ensemble_runs_, recordings_.size());
   for (const Candidate& c : sensor_candidates_)
     r.fits.push_back(fit_sensor(c, measured_, ensemble_runs_, search_, held_, target_.ensemble_chi2(members, false),
@@ -1747,6 +1762,38 @@ Round Diagnoser::profiled(int number) {
                                      number, r.fits[i].candidate.name, format_value(r.fits[i].candidate, r.fits[i].value),
                                      r.fits[i].delta));
   return r;
+}
+
+// A quick profile still falling at its outermost point has not bracketed its minimum, and the
+// screen would run the candidate where it is not at its best: case21 of the proof study (table
+// pitch 0.08 rad/m) profiled to 0.032 rad/m, the ladder's last rung (chi2 drop 54), screened
+// there below a sensor's clock lead (44) that was then accepted first, where 0.08 drops the
+// misfit by thousands. So the kScreened candidates whose profiles dropped most go on, one rung
+// (2x) at a time up to kProfileExtensions, while the outermost point stays the lowest.
+void Diagnoser::extend_falling_profiles(Round& r) {
+  for (int pass = 0; pass < kProfileExtensions; ++pass) {
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < candidates_.size(); ++i)
+      if (r.fits[i].delta > 0) order.push_back(i);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.fits[a].delta > r.fits[b].delta; });
+    if (order.size() > static_cast<std::size_t>(kScreened)) order.resize(kScreened);
+    std::vector<std::size_t> extended;
+    std::vector<Model> points;
+    for (std::size_t i : order) {
+      const double u = next_rung(r.profiles[i], to_scaled(candidates_[i], r.fits[i].value));
+      if (!std::isfinite(u)) continue;
+      extended.push_back(i), r.profiles[i].u.push_back(u);
+      points.push_back(applied(base_, candidates_[i], to_value(candidates_[i], u)));
+    }
+    if (points.empty()) return;
+    const std::vector<std::vector<Features>> evaluated = search_.evaluate(
+        points, fmt::format("round {}: profiles still falling", r.number), options_.profile_members, true);
+    for (std::size_t n = 0; n < extended.size(); ++n) {
+      const std::size_t i = extended[n];
+      r.profiles[i].members.push_back(evaluated[n]);
+      r.fits[i] = summarise(candidates_[i], r.profiles[i], profile_target_, r.chi2_base, r.held_base, profile_held(), false);
+    }
+  }
 }
 
 // A quick profile is one member's: on case02 of the second case set, after the table gain, the

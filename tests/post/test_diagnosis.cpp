@@ -811,8 +811,8 @@ void expect_improved_scenario_replays(const test::TempDir& dir, const diagnosis:
 // the block leans with the table (residual rock_x 4.6 mrad, in world axes), which no table gain or
 // body candidate can produce. That lean comes last, so a single recording holds it out (its later
 // half): the pulse is run twice, +x then -x (the lean follows the travel, either way), and the
-// second run is held out. Tolerance 0.015 rad/m: the last refinement's spacing is 0.01 (the
-// profile's best point 0.03 bracketed by 0.008 and the range end 0.1, each side in thirds twice); the
+// second run is held out. Tolerance 0.015 rad/m: the last refinement's spacing is at most 0.01 (the
+// profile's best point bracketed by its neighbours, at most 0.032 and 0.1, each side in thirds twice); the
 // rest is the trade-off with the table gain: the profile runs on one ensemble member, which
 // replays the table with its own gain (s.d. 2 %), and 2 % of gain moves the peak as much as
 // 0.026 rad/m of pitch (+10 mrad); weighed against the lean, which fixes c whatever the gain,
@@ -835,6 +835,14 @@ TEST(Diagnosis, NamesAndRecoversTablePitch) {
   expect_standard_error_covers(d.effects.front().fit, c);
   EXPECT_GT(d.effects.front().fit.held_out_delta, 0);  // the -x run leans the other way, as predicted
   expect_improved_scenario_replays(dir, d, recordings.front());
+  // c lies past the quick ladder's last rung (0.032 rad/m: 16 % of the range from 0), where the
+  // profile is still falling: it goes on to the next rung, 2x out (the refinement's points lie
+  // in thirds between 0.032 and the range's end 0.1, none at 0.064).
+  const auto pitch = std::find_if(d.rounds.front().begin(), d.rounds.front().end(),
+                                  [](const auto& f) { return f.candidate.entry == "table_pitch"; });
+  ASSERT_NE(pitch, d.rounds.front().end());
+  EXPECT_TRUE(std::any_of(pitch->profile.begin(), pitch->profile.end(),
+                          [](const auto& point) { return std::abs(point.first - 0.064) < 1e-9; }));
 }
 
 // The table also moves vertically, a_z = k a_x (k = 0.2), which the recordings do not state. A
