@@ -894,6 +894,16 @@ double next_rung(const Profile& p, double best) {
   return std::clamp(u0 + 2 * side, 0.0, 1.0);
 }
 
+// The kScreened of the first `physics` fits whose profiles dropped most (a positive drop), best first.
+std::vector<std::size_t> most_dropped(const std::vector<FittedCandidate>& fits, std::size_t physics) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < physics; ++i)
+    if (fits[i].delta > 0) out.push_back(i);
+  std::sort(out.begin(), out.end(), [&](std::size_t a, std::size_t b) { return fits[a].delta > fits[b].delta; });
+  if (out.size() > static_cast<std::size_t>(kScreened)) out.resize(kScreened);
+  return out;
+}
+
 // The mean chi2 of a point's members: with more than one, a member's chaotic jitter no longer
 // decides alone where a profile's minimum is.
 double mean_chi2(const Target& target, const std::vector<Features>& members, bool held_out) {
@@ -1772,14 +1782,9 @@ Round Diagnoser::profiled(int number) {
 // (2x) at a time up to kProfileExtensions, while the outermost point stays the lowest.
 void Diagnoser::extend_falling_profiles(Round& r) {
   for (int pass = 0; pass < kProfileExtensions; ++pass) {
-    std::vector<std::size_t> order;
-    for (std::size_t i = 0; i < candidates_.size(); ++i)
-      if (r.fits[i].delta > 0) order.push_back(i);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.fits[a].delta > r.fits[b].delta; });
-    if (order.size() > static_cast<std::size_t>(kScreened)) order.resize(kScreened);
     std::vector<std::size_t> extended;
     std::vector<Model> points;
-    for (std::size_t i : order) {
+    for (std::size_t i : most_dropped(r.fits, candidates_.size())) {
       const double u = next_rung(r.profiles[i], to_scaled(candidates_[i], r.fits[i].value));
       if (!std::isfinite(u)) continue;
       extended.push_back(i), r.profiles[i].u.push_back(u);
@@ -1805,12 +1810,7 @@ void Diagnoser::extend_falling_profiles(Round& r) {
 // that follows takes the bound on all the members (study 11 ranked a screen by the bound, and
 // three members' s.e. put every candidate below zero).
 void Diagnoser::screen(Round& r) {
-  std::vector<std::size_t> screened;
-  for (std::size_t i = 0; i < candidates_.size(); ++i)
-    if (r.fits[i].delta > 0) screened.push_back(i);
-  std::sort(screened.begin(), screened.end(),
-            [&](std::size_t a, std::size_t b) { return r.fits[a].delta > r.fits[b].delta; });
-  if (screened.size() > static_cast<std::size_t>(kScreened)) screened.resize(kScreened);
+  const std::vector<std::size_t> screened = most_dropped(r.fits, candidates_.size());
   if (screened.empty()) return;
   std::vector<Job> jobs;
   for (std::size_t i : screened) {
