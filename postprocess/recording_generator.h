@@ -128,6 +128,14 @@ void write_case(const GeneratedCase& generated, const std::string& name, const s
 // so every term is a displacement (m). Lost samples are skipped.
 double global_rms_error(const Recording& recording, const Recording& reference);
 
+// The effect's size against the sensor noise: sqrt(sum over every body
+// channel and sample of ((with - without) / the channel's noise sd)^2), with
+// `without` interpolated at `with`'s times. It is the deflection of the ideal
+// (Neyman-Pearson) detector that knows the effect's noise-free trace exactly,
+// in the white Gaussian noise the sensors add after their filter: no method
+// that must also estimate the trace, or see it through chaos, does better.
+double effect_deflection(const Recording& with, const Recording& without, const SensorModel& sensors);
+
 // y filtered by a causal Butterworth low-pass of `order` at `cutoff_hz`,
 // y sampled every `dt` s, starting from rest at y[0].
 std::vector<double> butterworth_lowpass(const std::vector<double>& y, double dt, double cutoff_hz, int order);

@@ -70,10 +70,12 @@ int generate(const GenerateOptions& o) {
       const GeneratedCase generated = generate_case(spec, cache, o.jobs);
       write_case(generated, spec.name, o.recordings, o.answers);
       const nlohmann::json& c = generated.answer["concealment"];
-      fmt::print("  magnitude {} {} ({}): RMS error change {:.3g} m, scatter {:.3g} m, effect alone {:.3g} m\n",
-                 generated.answer["effect"]["magnitude"].get<double>(),
-                 generated.answer["effect"]["unit"].get<std::string>(), c["rule"].get<std::string>(),
-                 c["change"].get<double>(), c["scatter"].get<double>(), c["effect_rms"].get<double>());
+      fmt::print(
+          "  magnitude {} {} ({}): RMS error change {:.3g} m, scatter {:.3g} m, effect alone {:.3g} m "
+          "(ideal detector's deflection {:.3g})\n",
+          generated.answer["effect"]["magnitude"].get<double>(), generated.answer["effect"]["unit"].get<std::string>(),
+          c["rule"].get<std::string>(), c["change"].get<double>(), c["scatter"].get<double>(),
+          c["effect_rms"].get<double>(), c["effect_deflection"].get<double>());
       manifest.push_back({{"recording", spec.name + ".csv"},
                           {"nominal", spec.name + ".nominal.json"},
                           {"ground_motion", generated.recording.nominal["ground_motion"]},
@@ -81,7 +83,8 @@ int generate(const GenerateOptions& o) {
       answers.push_back({{"case", spec.name}, {"answer", spec.name + ".answer.json"},
                          {"effect", generated.answer["effect"]["name"]},
                          {"magnitude", generated.answer["effect"]["magnitude"]},
-                         {"change", c["change"]}, {"scatter", c["scatter"]}, {"effect_rms", c["effect_rms"]}});
+                         {"change", c["change"]}, {"scatter", c["scatter"]}, {"effect_rms", c["effect_rms"]},
+                         {"effect_deflection", c["effect_deflection"]}});
     } catch (const std::exception& e) {
       if (!o.keep_going) throw;
       std::fprintf(stderr, "freestand generate: case '%s' skipped: %s\n", spec.name.c_str(), e.what());

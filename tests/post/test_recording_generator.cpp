@@ -10,7 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "freestand/body_channels.h"
 #include "freestand/input_error.h"
 #include "recording.h"
 #include "recording_generator.h"
@@ -84,6 +86,30 @@ TEST(RecordingGenerator, BadCasesAreReportedByField) {
   EXPECT_THROW(check_folders_apart(dir / "recordings/keys/..", dir / "recordings"), InputError);
   EXPECT_THROW(check_folders_apart(dir / "recordings", dir.path().string()), InputError);
   EXPECT_NO_THROW(check_folders_apart(dir / "recordings", dir / "answers"));
+}
+
+// The deflection against a closed form: 100 samples with rock_x off by 1e-3
+// rad against an angle noise of 1e-3 (1 per sample) and slide_x off by 1e-3 m
+// against a length noise of 5e-4 (4 per sample): sqrt(100 + 400). The
+// reference is sampled at other times (interpolated, linear data: exact).
+TEST(RecordingGenerator, EffectDeflectionIsTheIdealDetectorsAgainstTheSensorNoise) {
+  auto body_recording = [](double dt, std::size_t n, double rock, double slide) {
+    Recording r;
+    r.nominal = {{"bodies", {{{"name", "block"}}}}};
+    for (std::size_t k = 0; k < n; ++k) r.time.push_back(k * dt);
+    for (const std::string& channel : channel_names()) {
+      const double offset = channel == "rock_x" ? rock : channel == "slide_x" ? slide : 0.0;
+      RecordingChannel c{"block." + channel, {}};
+      for (double t : r.time) c.values.push_back(offset + 0.01 * t);  // the same drift in both
+      r.channels.push_back(std::move(c));
+    }
+    return r;
+  };
+  SensorModel sensors;
+  sensors.angle = 1e-3, sensors.length = 5e-4;
+  const Recording with = body_recording(0.01, 100, 1e-3, 1e-3), without = body_recording(0.005, 400, 0.0, 0.0);
+  EXPECT_NEAR(effect_deflection(with, without, sensors), std::sqrt(500.0), 1e-9);
+  EXPECT_EQ(effect_deflection(without, without, sensors), 0.0);
 }
 
 json read_json(const std::string& path) {
@@ -169,8 +195,10 @@ TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
     if (name == "block_none") {
       EXPECT_EQ(c["change"].get<double>(), 0.0);
     } else {
-      // The effect changes the channels (its noise-free size is not zero) ...
+      // The effect changes the channels (its noise-free size is not zero) by
+      // what a detector that knows the answer finds (the generator's rule) ...
       EXPECT_GT(c["effect_rms"].get<double>(), 0.0);
+      EXPECT_GE(c["effect_deflection"].get<double>(), 3.0);
       EXPECT_GT(key["effect"]["magnitude"].get<double>(), 0.0);
     }
     // The model is told the command; the recording shows what the servo
@@ -184,6 +212,33 @@ TEST(RecordingGenerator, FastSubsetIsConcealedAndKeptApart) {
   // A com offset is a body property: the truth had one, the nominal does not.
   const json com = read_json(dir / "answers/block_com.answer.json");
   EXPECT_NE(com["effect"]["truth_changes"]["com_truth"], com["effect"]["truth_changes"]["com_nominal"]);
+}
+
+// A friction law on the tall block, which rocks and never slides here, moves
+// its channels by far less than the sensor noise (case05 of the case set was
+// such a case: 2e-6 m against 5e-4 m of noise): concealed, but absent. The
+// generator refuses it, naming the deflection, and writes no recording.
+TEST(RecordingGenerator, RefusesAnEffectTheMotionDoesNotExercise) {
+  const test::TempDir dir;
+  const json cases = {
+      {"defaults",
+       {{"scenario", std::string(FREESTAND_SOURCE_DIR) + "/inputs/scenarios/marble_block_duzce.json"},
+        {"motion",
+         {{"record", std::string(FREESTAND_SHARED_DATA) + "/groundmotions/DUZCE_BOL090.AT2"},
+          {"units", "g"}, {"scale", 0.6}, {"skip", 9.5}, {"duration", 2.5}}},
+        {"sampling_hz", 100},
+        {"perturbation", {{"runs", 3}}}}},
+      {"cases", {{{"name", "block_friction"}, {"effect", {{"name", "static_kinetic_friction"}}}}}}};
+  const std::string case_file = dir.write("cases.json", cases.dump());
+  const std::string command = std::string(FREESTAND_TOOL) + " generate " + case_file + " -o " + (dir / "recordings") +
+                              " --answers " + (dir / "answers") + " -j 2 > " + (dir / "log.txt") + " 2>&1";
+  EXPECT_NE(std::system(command.c_str()), 0);
+  std::stringstream log;
+  log << std::ifstream(dir / "log.txt").rdbuf();
+  EXPECT_NE(log.str().find("case 'block_friction': effect static_kinetic_friction is absent from the recording"),
+            std::string::npos)
+      << log.str();
+  EXPECT_FALSE(fs::exists(dir / "recordings/block_friction.csv"));
 }
 
 }  // namespace
