@@ -30,6 +30,7 @@ scenario_of() {
     *_rock_*) echo "$root/inputs/scenarios/marble_block_duzce.json" ;;
     *_stack_*) echo "$root/inputs/scenarios/statue_pedestal_duzce.json" ;;
     *_slide_*) echo "$root/inputs/scenarios/squat_block_sliding.json" ;;
+    *_plinth_*) echo "$root/inputs/scenarios/equipment_on_plinth.json" ;;
     *) echo "unknown base of case '$1'" >&2; return 1 ;;
   esac
 }
