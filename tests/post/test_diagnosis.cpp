@@ -896,15 +896,17 @@ TEST(Diagnosis, TakesAVerticalTableCarryForPhysicsNotForADrift) {
 // Each feature must read k, not the drift: within 3 of its s.d. (the floor, from the noise over
 // the travel at rest), for k = 0.0125 (the proof study's concealed vertical table) and 0, and
 // the uplift's s.d. must be fine enough to tell 0.0125 from 0 (below a third of it). The tilt
-// reads k over what the block's own lean gives with no pitch (a block on a compliant contact
-// leans under the pulses' acceleration, which stays in step with the travel: 0.0264 rad/m,
-// measured), within 3 of its s.d. (from the 1 mrad angle noise: twice the uplift's).
+// must read k and not the block's own lean (a block on a compliant contact leans under the
+// pulses' acceleration; read on the travel alone that lean was 0.0264 rad/m with no pitch), within
+// 3 of its s.d. (from the 1 mrad angle noise, and the acceleration fitted beside the travel:
+// 0.0067, measured; too coarse to tell 0.0125 from 0 at this noise, but the lean read on the
+// travel alone, 0.0264 with no pitch, is outside it). At 0.1 mrad of noise the leaning block
+// is no longer at rest, so the noise is not lowered to sharpen it.
 TEST(DiagnosisFeatures, ReadsARestingBodysCarryByTheTableApartFromADrift) {
   test::TempDir dir;
   const json truth =
       standing_on(pulses_table(dir, "carry", {{0.2, 1.0, 2.5}, {1.5, -1.0, 2.5}, {2.8, 1.0, 2.5}}, 4.0), 4.0);
   const Recording clean = synthetic_recording(truth, dir / "truth", {1e-3, 5e-4, 51});
-  const diagnosis::Features lean_only = diagnosis::event_features(clean, clean.nominal);
   for (double k : {0.0125, 0.0}) {
     Recording r = clean;
     const std::vector<double> travel = *r.table_channel('d', 'x');
@@ -914,12 +916,10 @@ TEST(DiagnosisFeatures, ReadsARestingBodysCarryByTheTableApartFromADrift) {
       if (c.name == "block.uplift" || c.name == "block.rock_x")
         for (std::size_t i = 0; i < c.values.size(); ++i) c.values[i] += k * travel[i] + 1e-3 * r.time[i];
     const diagnosis::Features f = diagnosis::event_features(r, r.nominal);
-    const auto tilt = f.find("block.rock_x.table_carry"), lean = lean_only.find("block.rock_x.table_carry");
+    const auto tilt = f.find("block.rock_x.table_carry");
     ASSERT_NE(tilt, f.end());
-    ASSERT_NE(lean, lean_only.end());
-    std::cout << fmt::format("measured: tilt {:.5f} +- {:.5f} for {} over the lean {:.5f}\n", tilt->second.value,
-                             tilt->second.floor, k, lean->second.value);
-    EXPECT_NEAR(tilt->second.value - lean->second.value, k, 3 * tilt->second.floor);
+    std::cout << fmt::format("measured: tilt {:.5f} +- {:.5f} for {}\n", tilt->second.value, tilt->second.floor, k);
+    EXPECT_NEAR(tilt->second.value, k, 3 * tilt->second.floor);
     const auto carry = f.find("block.uplift.table_carry");
     ASSERT_NE(carry, f.end());
     std::cout << fmt::format("measured: carry {:.5f} +- {:.5f} for {}\n", carry->second.value, carry->second.floor, k);
