@@ -381,15 +381,36 @@ Features event_features(const Recording& recording, const json& analysis_nominal
     // and any candidate that moved that one feature a little outranked the rest (study 25).
     // Only of a body on the table: one on another body rides that body's carry (counted once,
     // there), and its own added a whole-record feature that moved the held-out split before the
-    // tower benchmark's evidence (study 28).
-    if (const std::vector<double>* travel = r.table_channel('d', 'x');
-        travel && body.supported_by == "table" && !body.motion.channels[analysis::kUplift].empty()) {
-      const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[analysis::kUplift], {travel},
-                                         at_rest(body.motion.time, s.modes), p.length_noise, kMinCarryRest);
-      const double carry = fit.slope(1), sd = fit.sd(1);
-      if (std::isfinite(sd))
-        add("uplift.table_carry", carry, 0, std::max(sd, std::hypot(gains.table, gains.sensor) * std::abs(carry)),
-            "uplift", false);
+    // tower benchmark's evidence (study 28). The tilt in x per m of travel is the same read of a
+    // table that pitches with its travel (rock_x is in the world frame, so a resting body shows
+    // the table's tilt): read against each run's own travel, so the drift of a replayed
+    // acceleration integrated twice (3 cm in 10 s of Kobe at 0.02 m/s^2 of noise) cancels. The
+    // table's acceleration is fitted beside it: a body on a compliant contact leans with the
+    // acceleration, which on a narrow-band record is nearly -omega^2 times the travel (read on the
+    // travel alone, a standing block leaned 0.0264 rad/m with no pitch, and a vertical table's
+    // profile moved that lean enough to lose case19's name, study 41).
+    const std::vector<double>* travel = r.table_channel('d', 'x');
+    const std::vector<double>* acceleration = r.table_channel('a', 'x');
+    struct Carried {
+      analysis::Channel channel;                          // what the table carries
+      double noise;                                       // its sensor noise
+      std::vector<const std::vector<double>*> regressors; // the travel first, whose slope is the feature
+      const char* feature;
+      const char* mode;
+    };
+    if (travel && body.supported_by == "table") {
+      std::vector<Carried> carried = {{analysis::kUplift, p.length_noise, {travel}, "uplift.table_carry", "uplift"}};
+      if (acceleration)
+        carried.push_back({analysis::kRockX, p.angle_noise, {travel, acceleration}, "rock_x.table_carry", "rock"});
+      for (const Carried& c : carried) {
+        if (body.motion.channels[c.channel].empty()) continue;
+        const RestSlopes fit = rest_slopes(body.motion.time, body.motion.channels[c.channel], c.regressors,
+                                           at_rest(body.motion.time, s.modes), c.noise, kMinCarryRest);
+        const double carry = fit.slope(1), sd = fit.sd(1);
+        if (std::isfinite(sd))
+          add(c.feature, carry, 0, std::max(sd, std::hypot(gains.table, gains.sensor) * std::abs(carry)), c.mode,
+              false);
+      }
     }
   }
   return out;
