@@ -271,6 +271,22 @@ ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& poi
   return {u, 1 / std::sqrt(fit(0))};
 }
 
+Valley valley_of(const std::vector<std::pair<double, double>>& points, double u) {
+  if (points.empty()) return {u, u};
+  std::size_t m = 0;
+  for (std::size_t k = 1; k < points.size(); ++k)
+    if (std::abs(points[k].first - u) < std::abs(points[m].first - u)) m = k;
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (std::size_t n : {m - 1, m + 1})  // m - 1 wraps past the end at m = 0
+      if (n < points.size() && points[n].second < points[m].second) m = n, moved = true;
+  }
+  std::size_t a = m, b = m;
+  while (a > 0 && points[a - 1].second >= points[a].second) --a;
+  while (b + 1 < points.size() && points[b + 1].second >= points[b].second) ++b;
+  return {points[a].first, points[b].first};
+}
+
 double secant_sd(double u0, double u, double drop) { return drop > 0 ? std::abs(u - u0) / std::sqrt(drop) : signal::kNaN; }
 
 // The curvature alone assumes the model fits the data; a misfit beyond the noise (chi2 per

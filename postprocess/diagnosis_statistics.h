@@ -130,6 +130,14 @@ struct ProfileMinimum {
 };
 ProfileMinimum profile_minimum(const std::vector<std::pair<double, double>>& points, int span);
 
+// The points of a profile (points (u, chi2), sorted by u) about the local minimum reached
+// downhill from the point nearest u, out to where the curve stops rising on either side: one
+// valley of a profile that may have several.
+struct Valley {
+  double from = 0, to = 0;  // scaled bounds, both profile points
+};
+Valley valley_of(const std::vector<std::pair<double, double>>& points, double u);
+
 // Standard error (scaled units) from the parabola with its minimum at the fit u through the
 // model before it (u0), `drop` below: |u - u0| / sqrt(drop). NaN without a drop.
 double secant_sd(double u0, double u, double drop);

@@ -252,6 +252,31 @@ TEST(DiagnosisStatistics, AProfilesParabolaFindsItsMinimumBetterThanItsLowestPoi
   EXPECT_LT(std::sqrt(parabola_square / kTrials), 0.9 * std::sqrt(lowest_square / kTrials));
 }
 
+// The profile of the tower benchmark's COM (10 mm) with the tilt's carry (study 42), in mm:
+// two valleys, about 7.2 mm (where the screen ran it) and 16.9 mm (where the whole record
+// overturns), parted by a rise at 12.1 mm. Each point's valley runs downhill to its own minimum
+// and out to where the curve stops rising; a single parabola is one valley wherever one starts.
+TEST(DiagnosisStatistics, AProfilesValleyEndsWhereTheCurveStopsRising) {
+  const std::vector<std::pair<double, double>> tower = {
+      {-28.944, 74.09}, {-7.236, 55.38}, {-1.809, 47.58}, {0.0, 44.37}, {1.809, 41.95}, {3.618, 37.46},
+      {5.427, 36.12},   {7.236, 34.62},  {9.648, 35.74},  {12.06, 42.41}, {14.472, 23.42}, {16.884, 21.51},
+      {19.296, 22.33},  {21.708, 25.58}, {28.944, 43.0}};
+  const Valley near = valley_of(tower, 7.236);
+  EXPECT_DOUBLE_EQ(near.from, -28.944);
+  EXPECT_DOUBLE_EQ(near.to, 12.06);
+  const Valley far = valley_of(tower, 17.7);  // nearest point 16.884, the far valley's minimum
+  EXPECT_DOUBLE_EQ(far.from, 12.06);
+  EXPECT_DOUBLE_EQ(far.to, 28.944);
+  const Valley slope = valley_of(tower, 3.0);  // from a slope (3.618) downhill to 7.236
+  EXPECT_DOUBLE_EQ(slope.to, 12.06);
+  std::vector<std::pair<double, double>> parabola;
+  for (int k = 0; k <= 10; ++k) parabola.push_back({0.1 * k, std::pow(0.1 * k - 0.3, 2)});
+  for (double u : {0.0, 0.3, 1.0}) {
+    EXPECT_DOUBLE_EQ(valley_of(parabola, u).from, 0.0);
+    EXPECT_DOUBLE_EQ(valley_of(parabola, u).to, 1.0);
+  }
+}
+
 TEST(DiagnosisStatistics, TheUnexplainedFlagFiresOnARightModelAtItsFamilyWiseRate) {
   // Bonferroni: the two-sided normal quantile at 0.01 / 40 (A&S 26.2: z(1.25e-4) = 3.6623).
   EXPECT_NEAR(family_wise_z(0.01, 40), 3.6623, 1e-3);
