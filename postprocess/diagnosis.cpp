@@ -1922,8 +1922,8 @@ std::size_t Diagnoser::first_passing(Round& r) {
 // The refinement sees the fit window only, as the profile does, and may leave the valley the
 // screen saw improve the whole record for a lower one beyond a rise, which the test then finds
 // worse than the model as given: with the tilt's carry, the tower benchmark's COM (10 mm)
-// screened +37.0 at 7.2 mm, its refinement went on past a rise at 12 mm to 17.7 mm, and there
-// every member overturned after the window (chi2 135 270 higher; study 42).
+// screened +37.1 at 7.2 mm, its refinement went on past a rise at 12.1 mm to 18.1 mm, and there
+// every member overturned after the window (chi2 128 504 higher; studies 41-42).
 bool Diagnoser::left_the_screened_valley(const Round& r, std::size_t i) const {
   if (!r.screened.count(i) || !(r.screened.at(i).first > 0) || !(r.fits[i].delta < 0)) return false;
   const Valley v = valley_of(profile_curve(candidates_[i], r.profiles[i], profile_target_), r.screened_at.at(i));
