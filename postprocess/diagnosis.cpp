@@ -1442,6 +1442,7 @@ class Diagnoser {
   void extend_falling_profiles(Round& r);
   void screen(Round& r);
   std::size_t first_passing(Round& r);
+  Valley screened_valley(const Round& r, std::size_t i) const;
   bool left_the_screened_valley(const Round& r, std::size_t i) const;
   void retest_in_screened_valley(Round& r, std::size_t i);
   bool fails_only_held_out(const FittedCandidate& f) const;
@@ -1924,9 +1925,13 @@ std::size_t Diagnoser::first_passing(Round& r) {
 // worse than the model as given: with the tilt's carry, the tower benchmark's COM (10 mm)
 // screened +37.1 at 7.2 mm, its refinement went on past a rise at 12.1 mm to 18.1 mm, and there
 // every member overturned after the window (chi2 128 504 higher; studies 41-42).
+Valley Diagnoser::screened_valley(const Round& r, std::size_t i) const {
+  return valley_of(profile_curve(candidates_[i], r.profiles[i], profile_target_), r.screened_at.at(i));
+}
+
 bool Diagnoser::left_the_screened_valley(const Round& r, std::size_t i) const {
   if (!r.screened.count(i) || !(r.screened.at(i).first > 0) || !(r.fits[i].delta < 0)) return false;
-  const Valley v = valley_of(profile_curve(candidates_[i], r.profiles[i], profile_target_), r.screened_at.at(i));
+  const Valley v = screened_valley(r, i);
   const double u = to_scaled(candidates_[i], r.fits[i].value);
   return u < v.from || u > v.to;
 }
@@ -1935,7 +1940,7 @@ bool Diagnoser::left_the_screened_valley(const Round& r, std::size_t i) const {
 // counted as one more candidate tried (Bonferroni).
 void Diagnoser::retest_in_screened_valley(Round& r, std::size_t i) {
   const Candidate& c = candidates_[i];
-  const Valley v = valley_of(profile_curve(c, r.profiles[i], profile_target_), r.screened_at.at(i));
+  const Valley v = screened_valley(r, i);
   Profile within;
   for (std::size_t k = 0; k < r.profiles[i].u.size(); ++k)
     if (r.profiles[i].u[k] >= v.from && r.profiles[i].u[k] <= v.to)
