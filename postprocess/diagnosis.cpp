@@ -1904,8 +1904,8 @@ std::vector<std::pair<double, double>> Diagnoser::screen_drops(const std::vector
 // may lie nearer the minimum: case17 of the proof study (tower COM 40 mm) profiled 55.3 at
 // 57.9 mm and 57.7 at 28.9 mm, screened -6.8 at 57.9 mm and was never tested. A candidate whose
 // screen did not improve the whole record is screened once more at the minimum of the parabola
-// through its lowest point and that point's neighbours (43.4 mm there), and the better screen
-// stands. Only then: on the proof study's profiles the lowest point lies nearer the refined
+// through its lowest point and that point's neighbours (43.4 mm there), which stands if it
+// does. Only then: on the proof study's profiles the lowest point lies nearer the refined
 // minimum than the parabola's (39 of 71; study 43), and case19's table motion (0.0125 az/ax),
 // screened from the parabola (0.0218 on a ladder of 0, 0.02, 0.08), was not tested. A second
 // screen that stands counts as one more candidate tried (Bonferroni).
@@ -1925,7 +1925,7 @@ void Diagnoser::look_again_at_parabolas(const Round& r, const std::vector<std::s
   for (std::size_t k = 0; k < again.size(); ++k) {
     const std::size_t n = again[k];
     const Candidate& c = candidates_[which[k]];
-    const bool better = more[k].first > drops[n].first;
+    const bool better = more[k].first > std::max(drops[n].first, 0.0);  // else not tested either way
     d_.notes.push_back(fmt::format("round {}: {} screened {:.1f} at {}, its profile's lowest point; {:.1f} at {}, its "
                                    "parabola's minimum{}",
                                    r.number, c.name, drops[n].first, format_value(c, to_value(c, at[n])), more[k].first,
