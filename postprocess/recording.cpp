@@ -20,6 +20,7 @@
 #include "atomic_file.h"
 #include "csv_cells.h"
 #include "hdf5_read.h"
+#include "signal_tools.h"
 #include "freestand/input_error.h"
 #include "freestand/series_file.h"
 
@@ -268,10 +269,44 @@ std::vector<double> differentiate_finite(const std::vector<double>& t, const std
   return out;
 }
 
+// The table's travel as it is differentiated: only the frequencies where it exceeds its stated
+// noise (sensor_noise.length; signal::cut_noise), which differentiated twice is 12 m/s^2 rms
+// for 0.5 mm at 200 Hz. Lost samples are bridged for the spectrum and stay lost. As recorded,
+// with a warning, when no noise is stated or the sampling is not uniform (to 1 % of its step).
+std::vector<double> travel_to_differentiate(Recording& r, const std::vector<double>& d, char axis) {
+  const json noise = r.nominal.value("sensor_noise", json::object()).value("length", json());
+  const double sigma = noise.is_number() ? noise.get<double>() : 0.0;
+  const double dt = signal::median_step(r.time);
+  bool uniform = true;
+  for (std::size_t k = 0; k + 1 < r.time.size(); ++k) uniform &= std::fabs(r.time[k + 1] - r.time[k] - dt) <= 0.01 * dt;
+  const auto finite = [](double v) { return std::isfinite(v); };
+  const auto first = std::find_if(d.begin(), d.end(), finite), last = std::find_if(d.rbegin(), d.rend(), finite).base();
+  const char* as_recorded = !(sigma > 0) ? "no sensor_noise.length stated"
+                            : !uniform     ? "sampling not uniform"
+                            : last - first < 8 ? "fewer than 8 samples"
+                                               : nullptr;
+  if (as_recorded) {
+    r.warnings.push_back(fmt::format("{}: table_a{} differentiated twice from table_d{} as recorded ({}): its noise is "
+                                     "amplified by (2 pi f)^2",
+                                     r.path, axis, axis, as_recorded));
+    return d;
+  }
+  const std::size_t from = first - d.begin(), count = last - first;
+  const signal::NoiseCut cut = signal::cut_noise(signal::resample_uniform(r.time, d, r.time[from], dt, count), dt, sigma);
+  std::vector<double> out = d;
+  for (std::size_t k = 0; k < count; ++k)
+    if (std::isfinite(d[from + k])) out[from + k] = cut.values[k];
+  r.warnings.push_back(fmt::format("{}: table_a{} differentiated twice from table_d{} where the travel exceeds its "
+                                   "stated noise ({:.3g} m): up to {:.3g} Hz",
+                                   r.path, axis, axis, sigma, cut.highest_kept_hz));
+  return out;
+}
+
 // Per axis: a missing velocity is integrated from the acceleration (from
-// rest) or else differentiated from the displacement; a missing
-// acceleration is differentiated from the velocity; a missing displacement
-// is integrated from the velocity (from zero).
+// rest) or else differentiated from the displacement (through
+// travel_to_differentiate); a missing acceleration is differentiated from
+// the velocity; a missing displacement is integrated from the velocity
+// (from zero).
 void derive_table_channels(Recording& r) {
   for (const char axis : {'x', 'y', 'z'}) {
     const auto values = [&](char kind) -> std::optional<std::vector<double>> {
@@ -285,7 +320,7 @@ void derive_table_channels(Recording& r) {
       return derived;
     };
     const std::string where = fmt::format("{}: deriving table channels along {}", r.path, axis);
-    if (!v) v = add('v', a ? integrate_from_rest(r.time, *a) : differentiate_finite(r.time, *d, where));
+    if (!v) v = add('v', a ? integrate_from_rest(r.time, *a) : differentiate_finite(r.time, travel_to_differentiate(r, *d, axis), where));
     if (!a) a = add('a', differentiate_finite(r.time, *v, where));
     if (!d) d = add('d', integrate_from_rest(r.time, *v));
   }

@@ -1,9 +1,13 @@
 #include "signal_tools.h"
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/gamma.hpp>
+#include <unsupported/Eigen/FFT>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <functional>
 
 namespace freestand::signal {
 
@@ -94,6 +98,67 @@ double median_step(const std::vector<double>& t) {
   for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
   std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
   return steps[steps.size() / 2];
+}
+
+namespace {
+
+// y less the line through its end points (so its periodic extension has no jump, and a line
+// has no acceleration), and the DFT of the rest.
+struct Detrended {
+  std::vector<double> line;
+  std::vector<std::complex<double>> spectrum;
+};
+Detrended detrended(const std::vector<double>& y) {
+  const std::size_t n = y.size();
+  Detrended out{std::vector<double>(n), {}};
+  std::vector<double> rest(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out.line[k] = y.front() + (y.back() - y.front()) * k / (n - 1.0);
+    rest[k] = y[k] - out.line[k];
+  }
+  Eigen::FFT<double>().fwd(out.spectrum, rest);
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> band_limited(const std::vector<double>& y, double dt, const std::function<bool(double)>& keep) {
+  const std::size_t n = y.size();
+  if (n < 3) return y;
+  Detrended parts = detrended(y);
+  for (std::size_t k = 1; 2 * k <= n; ++k)
+    if (!keep(k / (n * dt))) parts.spectrum[k] = parts.spectrum[n - k] = 0;
+  std::vector<double> out;
+  Eigen::FFT<double>().inv(out, parts.spectrum);
+  for (std::size_t k = 0; k < n; ++k) out[k] += parts.line[k];
+  return out;
+}
+
+NoiseCut cut_noise(const std::vector<double>& y, double dt, double noise) {
+  const std::size_t n = y.size();
+  if (n < 8 || !(noise > 0)) return {y, 0.5 / dt};
+  const Detrended parts = detrended(y);
+  // Averaged over 1 Hz (n dt bins), at least 5, mirrored at 0 and Nyquist: one bin's power
+  // scatters by 100 %, an average over w bins as Gamma(w, 1 / w) times its mean.
+  const long last = static_cast<long>(n / 2), half = std::max(2L, std::lround(0.5 * n * dt)), w = 2 * half + 1;
+  const auto power = [&](long k) {
+    k = std::abs(k);
+    return std::norm(parts.spectrum[std::clamp(k > last ? 2 * last - k : k, 0L, last)]);
+  };
+  // Kept where signal exceeds noise (twice the noise's power), and beyond what noise alone
+  // reaches in any bin but with probability 1 % (Bonferroni over the bins): one stray bin of
+  // noise kept at 80 Hz would add 4 m/s^2 rms to an acceleration.
+  const double chance = boost::math::quantile(boost::math::complement(
+                            boost::math::gamma_distribution<double>(w, 1.0 / w), 0.01 / last)),
+               threshold = std::max(2.0, chance) * n * noise * noise;  // E |DFT of the noise|^2 = n noise^2
+  std::vector<bool> kept(last + 1);
+  double highest = 0;
+  for (long k = 1; k <= last; ++k) {
+    double sum = 0;
+    for (long j = k - half; j <= k + half; ++j) sum += power(j);
+    if ((kept[k] = sum / w > threshold)) highest = k / (n * dt);
+  }
+  return {band_limited(y, dt, [&](double hz) { return kept[std::lround(hz * n * dt)]; }), highest};
 }
 
 double finite_mean(const std::vector<double>& y, IndexRange range) {

@@ -7,6 +7,7 @@
 // with chatter suppression. Plain arrays in, plain numbers out; no I/O.
 
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -61,6 +62,26 @@ double median_step(const std::vector<double>& t);
 // so impacts and jumps do not count); signal content can only raise it. NaN
 // with fewer than 3 finite differences.
 double second_difference_noise(const std::vector<double>& y);
+
+// A uniformly sampled series (step dt, every sample finite) with only the DFT bins whose
+// frequency (Hz) `keep` accepts: the line through its end points taken out first (so its
+// periodic extension has no jump; a line has no acceleration) and put back after. Zero phase.
+std::vector<double> band_limited(const std::vector<double>& y, double dt, const std::function<bool(double)>& keep);
+
+// The same series read through white noise of s.d. `noise`, with only the bins where its signal
+// exceeds the noise. Each differentiation multiplies signal and noise alike by 2 pi f, so a bin
+// improves a derivative only while its signal exceeds its noise: 0.5 mm of noise on a table's
+// travel at 200 Hz, differentiated twice (central differences), is 12 m/s^2 rms against a
+// 1 m/s^2 earthquake record.
+// A bin is kept when the power spectrum of the series less its end points' line, averaged over
+// 1 Hz about it (at least 5 bins), exceeds twice the noise's (signal above noise) and what the
+// noise's average reaches in any bin with probability 1 %. Bands, not one cut-off: a sine test's
+// harmonics stand apart. No noise: the series as it is.
+struct NoiseCut {
+  std::vector<double> values;  // the series with the bins kept (units of y)
+  double highest_kept_hz = 0;  // the highest frequency kept (Nyquist with no noise)
+};
+NoiseCut cut_noise(const std::vector<double>& y, double dt, double noise);
 
 // Mean of the finite values of y in `range`; NaN when none.
 double finite_mean(const std::vector<double>& y, IndexRange range);

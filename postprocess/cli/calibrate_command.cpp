@@ -145,8 +145,8 @@ int calibrate_command(const CalibrateOptions& o) {
   options.jobs = o.jobs, options.max_evaluations = o.max_evaluations, options.algorithm = o.algorithm;
   options.uncertainty = o.uncertainty;
   std::vector<Recording> recordings, held_out;
-  for (const std::string& p : o.recordings) recordings.push_back(read_recording(p));
-  for (const std::string& p : o.validate) held_out.push_back(read_recording(p));
+  for (const std::string& p : o.recordings) print_warnings(recordings.emplace_back(read_recording(p)));
+  for (const std::string& p : o.validate) print_warnings(held_out.emplace_back(read_recording(p)));
   json report = {{"scenario", o.scenario}, {"fit", o.fit}};
 
   CalibrationResult result;

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "recording.h"
+
 namespace freestand::cli {
 
 void add_run_command(CLI::App& app);
@@ -21,6 +23,10 @@ void add_generate_command(CLI::App& app);
 // InputError and other exceptions into one message on stderr and status 1;
 // a non-zero status ends the program with it.
 void guarded(const std::function<int()>& body);
+
+// A recording's warnings (unknown fields and columns, table channels derived through a cut),
+// one line each on stderr.
+void print_warnings(const Recording& recording);
 
 }  // namespace freestand::cli
 

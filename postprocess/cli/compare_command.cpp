@@ -48,6 +48,7 @@ void print_errors(const RunComparison& run) {
 
 int compare(const CompareOptions& o) {
   const ReportData data = load_report_data(o.results, o.recording);
+  if (data.recording) print_warnings(*data.recording);
   const RunComparison& run = *data.comparison;
   std::vector<std::string> names;
   for (const ComparedBody& b : run.bodies) names.push_back(b.simulated.name);

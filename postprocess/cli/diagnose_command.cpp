@@ -97,7 +97,7 @@ int diagnose_command(DiagnoseOptions& o) {
       scenario_path = input;
       scenario = portable(read_scenario(input).document, input);  // table records resolve from anywhere
     } else {
-      recordings.push_back(read_recording(input));
+      print_warnings(recordings.emplace_back(read_recording(input)));
     }
   }
   if (recordings.empty()) throw InputError("diagnose: no recording given (NAME.csv with NAME.nominal.json, or NAME.h5)");

@@ -19,6 +19,10 @@ void guarded(const std::function<int()>& body) {
   if (status != 0) throw CLI::RuntimeError(status);
 }
 
+void print_warnings(const Recording& recording) {
+  for (const std::string& w : recording.warnings) std::fprintf(stderr, "freestand: warning: %s\n", w.c_str());
+}
+
 }  // namespace freestand::cli
 
 int main(int argc, char** argv) {

@@ -20,6 +20,7 @@ struct ReportOptions {
 
 int report(const ReportOptions& o) {
   const ReportData data = load_report_data(o.results, o.recording);
+  if (data.recording) print_warnings(*data.recording);
   const std::string output =
       o.output.empty() ? (std::filesystem::path(o.results).parent_path() / "report.html").string() : o.output;
   build_report(data).write(output);

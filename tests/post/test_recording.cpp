@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <random>
 
 #include "freestand/input_error.h"
 #include "freestand/series_file.h"
@@ -232,6 +233,43 @@ TEST(RecordingTable, DisplacementOnlyDifferentiated) {
   EXPECT_LT(a_inside, 3 * w * w * w * w * h * h);
   EXPECT_LT(a_ends, 2 * w * w * w * h);
   EXPECT_GT(a_inside, 0.0);  // derived, not copied
+}
+
+TEST(RecordingTable, NoisyDisplacementIsCutWhereItsStatedNoiseOvertakesIt) {
+  // Three tones (1, 2.5 and 4 Hz, 1 m/s^2 each) in 0.5 mm of noise at 200 Hz for 10 s: twice
+  // differentiated as recorded (central differences over 2 h) that noise alone is 0.5e-3
+  // sqrt(6) / (4 0.005^2) = 12 m/s^2 rms.
+  // Kept only where the travel exceeds the stated noise (signal::cut_noise: about the tones,
+  // 1 Hz wide each), what is left of the noise is about 2 sigma^2 dt (2 pi)^4 f^4 B over the
+  // kept band B = 3 Hz near f = 4 Hz: 0.03 m/s^2 rms; the bound allows 3 times it. One cut-off
+  // below the last tone would lose the tones above it (1 m/s^2 rms of a 1.5 m/s^2 record).
+  // A lost sample stays lost.
+  TempDir dir;
+  std::mt19937 random(3);
+  std::normal_distribution<double> noise(0, 5e-4);
+  const auto tones = [](double t, int derivative) {
+    double sum = 0;
+    for (double f : {1.0, 2.5, 4.0}) sum += std::sin(2 * M_PI * f * t) * (derivative ? 1 : -1 / std::pow(2 * M_PI * f, 2));
+    return sum;
+  };
+  std::string csv = table_csv({"table_dx"}, {[&](double t) { return tones(t, 0) + noise(random); }}, 2001, 0.005);
+  csv.replace(csv.find("\n5,0,") + 5, csv.find('\n', csv.find("\n5,0,") + 1) - csv.find("\n5,0,") - 5, "nan");
+  const std::string stated = R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.1, 0.1, 0.5],
+        "mass": 100, "com": [0, 0, 0.5]}], "sampling_hz": 200, "sensor_noise": {"angle": 5e-4, "length": 5e-4}})";
+  const Recording r = read_recording(write_pair(dir, csv, stated));
+  const std::vector<double>& a = *r.table_channel('a', 'x');
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = 10; i + 10 < a.size(); ++i)
+    if (i != 1000) sum += std::pow(a[i] - tones(r.time[i], 2), 2), ++count;
+  EXPECT_LT(std::sqrt(sum / count), 0.1);
+  EXPECT_TRUE(std::isnan(a[1000]) && std::isnan((*r.table_channel('v', 'x'))[1000]));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_CONTAINS(r.warnings[0], "table_ax differentiated twice from table_dx where the travel exceeds its stated noise");
+  // The noise not stated: differentiated as recorded, and said so.
+  const Recording unstated = read_recording(write_pair(dir, csv, kBlock, "unstated"));
+  ASSERT_EQ(unstated.warnings.size(), 1u);
+  EXPECT_CONTAINS(unstated.warnings[0], "as recorded (no sensor_noise.length stated)");
 }
 
 TEST(RecordingTable, VelocityWithLostSampleBridgesTheGap) {
