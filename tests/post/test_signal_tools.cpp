@@ -54,8 +54,8 @@ double acceleration_error(const std::vector<double>& y, const std::vector<double
 // near it: on a spectrum falling as f^-4 the bins it keeps end where a 1-Hz average of the power
 // crosses about 2.5 times the noise's, and that average scatters by about 1 / sqrt(21) here,
 // which moves the end by a few bins (measured: 1.03-1.05 times the best wall for these three
-// noise draws; on five recordings of the case set 0.95-1.0 times the best of six walls). Without the cut the acceleration is noise: 0.5 mm at 200 Hz is
-// 0.5e-3 sqrt(6) / dt^2 = 49 m/s^2 rms.
+// noise draws). Without the cut the three-point second difference is noise: 0.5 mm at 200 Hz
+// is 0.5e-3 sqrt(6) / dt^2 = 49 m/s^2 rms.
 TEST(SignalTools, CutNoiseComesNearTheBestBrickWallForADifferentiatedTravel) {
   const double dt = 0.005, sigma = 5e-4;
   const Travel truth = broadband_travel(4000, dt);
