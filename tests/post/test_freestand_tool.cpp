@@ -136,9 +136,12 @@ TEST(FreestandTool, ContactResultantsOfAStackAtRestAreItsWeights) {
 
 // freestand diagnose refuses a recording too short to diagnose: exit status
 // 1, the file named, no verdict and no improved scenario.
+// Refused before any simulation, and what the reader noticed (a field the format does not
+// know) is printed, not dropped.
 TEST(FreestandTool, DiagnoseRefusesATooShortRecording) {
   freestand::test::TempDir dir;
-  dir.write("short.nominal.json", R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.1, 0.1, 0.3]}]})");
+  dir.write("short.nominal.json",
+            R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.1, 0.1, 0.3]}], "colour": "grey"})");
   std::string csv = "t,block.rock_x\n";
   for (int k = 0; k < 10; ++k) csv += std::to_string(0.005 * k) + ",0\n";
   const std::string recording = dir.write("short.csv", csv);
@@ -146,6 +149,9 @@ TEST(FreestandTool, DiagnoseRefusesATooShortRecording) {
   EXPECT_EQ(run(std::string(FREESTAND_TOOL) + " diagnose " + recording + " -o " + (dir / "improved.json"), &printed), 1);
   EXPECT_NE(printed.find("short.csv"), std::string::npos) << printed;
   EXPECT_NE(printed.find("too short"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("freestand: warning: " + (dir / "short.nominal.json") + ": unknown field 'colour'"),
+            std::string::npos)
+      << printed;
   EXPECT_EQ(printed.find("Missing physics"), std::string::npos) << printed;
   EXPECT_FALSE(fs::exists(dir / "improved.json"));
 }
