@@ -274,7 +274,8 @@ std::vector<double> differentiate_finite(const std::vector<double>& t, const std
 // for 0.5 mm at 200 Hz. Lost samples are bridged for the spectrum and stay lost. As recorded,
 // with a warning, when no noise is stated or the sampling is not uniform (to 1 % of its step).
 std::vector<double> travel_to_differentiate(Recording& r, const std::vector<double>& d, char axis) {
-  const json noise = r.nominal.value("sensor_noise", json::object()).value("length", json());
+  const json stated = r.nominal.value("sensor_noise", json::object());
+  const json noise = stated.is_object() ? stated.value("length", json()) : json();
   const double sigma = noise.is_number() ? noise.get<double>() : 0.0;
   const double dt = signal::median_step(r.time);
   bool uniform = true;

@@ -135,9 +135,8 @@ TEST(FreestandTool, ContactResultantsOfAStackAtRestAreItsWeights) {
 }
 
 // freestand diagnose refuses a recording too short to diagnose: exit status
-// 1, the file named, no verdict and no improved scenario.
-// Refused before any simulation, and what the reader noticed (a field the format does not
-// know) is printed, not dropped.
+// 1, the file named, no verdict and no improved scenario; what the reader
+// noticed before (a field the format does not know) is printed, not dropped.
 TEST(FreestandTool, DiagnoseRefusesATooShortRecording) {
   freestand::test::TempDir dir;
   dir.write("short.nominal.json",
