@@ -327,6 +327,19 @@ void derive_table_channels(Recording& r) {
   }
 }
 
+// A warning per table acceleration with lost samples: a replay bridges them (or refuses).
+void report_lost_table_samples(Recording& r) {
+  for (const char axis : {'x', 'y', 'z'}) {
+    const std::vector<double>* a = r.table_channel('a', axis);
+    if (!a) continue;
+    const signal::LostSamples lost = signal::lost_samples(r.time, *a);
+    if (lost.count == 0) continue;
+    r.warnings.push_back(fmt::format("{}: table_a{}: {} samples lost, the longest run spanning {:.3g} s from t = {:.6g} s; "
+                                     "a replay of the table bridges runs up to {} s linearly",
+                                     r.path, axis, lost.count, lost.longest, lost.longest_at, kLongestTableBridge));
+  }
+}
+
 // Checks shared by both file kinds, then the derived table channels.
 void finish(Recording& r, const std::vector<std::string>& bodies, const std::string& sidecar,
             const SampleLocator& where) {
@@ -335,6 +348,7 @@ void finish(Recording& r, const std::vector<std::string>& bodies, const std::str
   check_time(r.time, where);
   check_rock_range(r, where);
   derive_table_channels(r);
+  report_lost_table_samples(r);
 }
 
 // ---- CSV ------------------------------------------------------------------
@@ -497,6 +511,17 @@ const std::vector<double>& Recording::body_channel(const std::string& body,
 const std::vector<double>* Recording::table_channel(char kind, char axis) const {
   const RecordingChannel* c = find(fmt::format("table_{}{}", kind, axis));
   return c ? &c->values : nullptr;
+}
+
+std::vector<double> replayed_table_acceleration(const Recording& recording, char axis) {
+  const std::vector<double>* a = recording.table_channel('a', axis);
+  if (!a) return {};
+  if (const signal::LostSamples lost = signal::lost_samples(recording.time, *a); lost.longest > kLongestTableBridge)
+    fail(recording.path.empty() ? "recording" : recording.path,
+         fmt::format("table acceleration along {} lost for {:.3g} s from t = {:.6g} s: cannot replay the table (a "
+                     "replay bridges at most {} s)",
+                     axis, lost.longest, lost.longest_at, kLongestTableBridge));
+  return signal::bridge_lost(recording.time, *a);
 }
 
 Recording up_to(const Recording& recording, double end) {

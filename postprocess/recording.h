@@ -38,6 +38,16 @@ struct Recording {
   const std::vector<double>* table_channel(char kind, char axis) const;
 };
 
+// The longest run of lost table acceleration a replay bridges, linearly (s): a straight line over
+// 0.05 s misses a 2 Hz sine, a typical strong-motion frequency, by at most 5 % of its amplitude
+// ((pi f T)^2 / 2).
+inline constexpr double kLongestTableBridge = 0.05;
+
+// The table's acceleration along `axis` as a simulation replays it: lost samples bridged
+// (signal::bridge_lost). Throws InputError naming the recording and the time when a run of lost
+// samples spans more than kLongestTableBridge. Null channel: an empty vector.
+std::vector<double> replayed_table_acceleration(const Recording& recording, char axis);
+
 // Its samples at times up to `end` (all channels cut alike).
 Recording up_to(const Recording& recording, double end);
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <utility>
 
 namespace freestand::signal {
 
@@ -70,16 +71,46 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y[hi - 1] + f * (y[hi] - y[hi - 1]);  // NaN when either neighbour is lost
 }
 
+namespace {
+
+// The finite samples of y, with their times.
+std::pair<std::vector<double>, std::vector<double>> finite_samples(const std::vector<double>& t,
+                                                                   const std::vector<double>& y) {
+  std::pair<std::vector<double>, std::vector<double>> out;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (std::isfinite(y[i])) out.first.push_back(t[i]), out.second.push_back(y[i]);
+  return out;
+}
+
+}  // namespace
+
 std::vector<double> resample_uniform(const std::vector<double>& t, const std::vector<double>& y,
                                      double t0, double dt, std::size_t n) {
-  std::vector<double> valid_t, valid_y;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (std::isfinite(y[i])) {
-      valid_t.push_back(t[i]);
-      valid_y.push_back(y[i]);
-    }
+  const auto [valid_t, valid_y] = finite_samples(t, y);
   std::vector<double> out(n);
   for (std::size_t k = 0; k < n; ++k) out[k] = interpolate(valid_t, valid_y, t0 + k * dt);
+  return out;
+}
+
+std::vector<double> bridge_lost(const std::vector<double>& t, const std::vector<double>& y) {
+  const auto [valid_t, valid_y] = finite_samples(t, y);
+  std::vector<double> out(y.size(), kNaN);
+  if (valid_t.empty()) return out;
+  for (std::size_t i = 0; i < y.size(); ++i)
+    out[i] = std::isfinite(y[i]) ? y[i] : interpolate(valid_t, valid_y, std::clamp(t[i], valid_t.front(), valid_t.back()));
+  return out;
+}
+
+LostSamples lost_samples(const std::vector<double>& t, const std::vector<double>& y) {
+  LostSamples out;
+  for (std::size_t i = 0; i < y.size();) {
+    if (std::isfinite(y[i])) { ++i; continue; }
+    std::size_t end = i;
+    while (end < y.size() && !std::isfinite(y[end])) ++end;
+    const double span = t[std::min(end, y.size() - 1)] - t[i == 0 ? 0 : i - 1];
+    if (span > out.longest) out.longest = span, out.longest_at = t[i];
+    out.count += end - i, i = end;
+  }
   return out;
 }
 

@@ -54,6 +54,20 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 std::vector<double> resample_uniform(const std::vector<double>& t, const std::vector<double>& y,
                                      double t0, double dt, std::size_t n);
 
+// y with every lost sample bridged linearly between its finite neighbours in t, and held at the
+// nearest finite value before the first and after the last (a replayed table needs a value at
+// every step); all NaN when no sample is finite.
+std::vector<double> bridge_lost(const std::vector<double>& t, const std::vector<double>& y);
+
+// The longest run of lost samples of y, as a bridge spans it: from the finite sample before it to
+// the one after (to the record's first or last time where it has none).
+struct LostSamples {
+  std::size_t count = 0;   // lost samples in all
+  double longest = 0;      // s: the longest bridge (0 when none is lost)
+  double longest_at = kNaN; // s: the time of its first lost sample
+};
+LostSamples lost_samples(const std::vector<double>& t, const std::vector<double>& y);
+
 // Median spacing of t (s): the sampling step of a recording with occasional jitter.
 double median_step(const std::vector<double>& t);
 

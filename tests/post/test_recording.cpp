@@ -264,11 +264,12 @@ TEST(RecordingTable, NoisyDisplacementIsCutWhereItsStatedNoiseOvertakesIt) {
     if (i != 1000) sum += std::pow(a[i] - tones(r.time[i], 2), 2), ++count;
   EXPECT_LT(std::sqrt(sum / count), 0.1);
   EXPECT_TRUE(std::isnan(a[1000]) && std::isnan((*r.table_channel('v', 'x'))[1000]));
-  ASSERT_EQ(r.warnings.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 2u);  // the cut, and the lost sample a replay bridges
   EXPECT_CONTAINS(r.warnings[0], "table_ax differentiated twice from table_dx where the travel exceeds its stated noise");
+  EXPECT_CONTAINS(r.warnings[1], "table_ax: 1 samples lost");
   // The noise not stated: differentiated as recorded, and said so.
   const Recording unstated = read_recording(write_pair(dir, csv, kBlock, "unstated"));
-  ASSERT_EQ(unstated.warnings.size(), 1u);
+  ASSERT_EQ(unstated.warnings.size(), 2u);
   EXPECT_CONTAINS(unstated.warnings[0], "as recorded (no sensor_noise.length stated)");
 }
 
@@ -287,6 +288,41 @@ TEST(RecordingTable, VelocityWithLostSampleBridgesTheGap) {
     }
     EXPECT_NEAR(a, 3.0, 1e-9);
     EXPECT_NEAR(d, 1.5 * r.time[i] * r.time[i], 1e-12);
+  }
+}
+
+TEST(RecordingTable, LostAccelerationIsReplayedAcrossAShortGapAndRefusedAcrossALongOne) {
+  // A 2 Hz sine of 1 m/s^2 at 200 Hz with 8 samples lost about its crest (the bridge's worst
+  // place), the bridge spanning T = 0.045 s: a chord misses a sine by at most its amplitude
+  // times 1 - cos(omega T / 2) <= (pi f T)^2 / 2 = 0.040, the bound kLongestTableBridge's
+  // comment states. Read, the samples stay lost and the reader says a replay bridges them.
+  // A gap of 0.06 s is refused, naming the time: the replay would invent the table's motion.
+  TempDir dir;
+  const auto sine = [](double t) { return std::sin(2 * M_PI * 2 * t); };
+  const auto with_gap = [&](int first, int last) {  // samples first..last lost (t = k / 200)
+    std::string csv = "t,block.rock_x,table_ax\n";
+    for (int k = 0; k < 800; ++k)
+      csv += fmt::format("{},0,{}\n", k * 0.005, k >= first && k <= last ? "" : fmt::format("{}", sine(k * 0.005)));
+    return csv;
+  };
+  const std::string nominal = R"({"bodies": [{"name": "block", "shape": "box", "half_extents": [0.1, 0.1, 0.5],
+        "mass": 100, "com": [0, 0, 0.5]}], "sampling_hz": 200})";
+  const Recording r = read_recording(write_pair(dir, with_gap(22, 29), nominal));  // the crest at k = 25
+  EXPECT_TRUE(std::isnan((*r.table_channel('a', 'x'))[25]));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_CONTAINS(r.warnings[0], "table_ax: 8 samples lost, the longest run spanning 0.045 s from t = 0.11 s");
+  const std::vector<double> replayed = replayed_table_acceleration(r, 'x');
+  double worst = 0;
+  for (int k = 22; k <= 29; ++k) worst = std::max(worst, std::abs(replayed[k] - sine(k * 0.005)));
+  EXPECT_LE(worst, std::pow(M_PI * 2 * 0.045, 2) / 2);
+  EXPECT_GT(worst, 0.02);  // the crest's chord: 1 - cos at the nearest samples, not a copy of the truth
+  EXPECT_EQ(replayed[21], sine(21 * 0.005));
+  const Recording long_gap = read_recording(write_pair(dir, with_gap(100, 110), nominal, "long"));
+  try {
+    replayed_table_acceleration(long_gap, 'x');
+    ADD_FAILURE() << "a 0.06 s gap was replayed";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "long.csv: table acceleration along x lost for 0.06 s from t = 0.5 s");
   }
 }
 

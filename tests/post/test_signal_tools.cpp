@@ -85,5 +85,20 @@ TEST(SignalTools, CutNoiseWithoutNoiseLeavesTheSeries) {
   EXPECT_DOUBLE_EQ(none.highest_kept_hz, 100.0);
 }
 
+// A line is its own linear bridge: the lost samples inside fall on it, those before the first and
+// after the last finite sample take its value there; the longest run spans from the finite
+// sample before it to the one after (or to the record's end).
+TEST(SignalTools, BridgeLostJoinsNeighboursAndHoldsTheEnds) {
+  const std::vector<double> t = {0, 1, 2, 3, 4, 5, 6, 7};
+  const std::vector<double> y = {kNaN, 2, kNaN, kNaN, 8, 10, kNaN, kNaN};  // 2 t where finite
+  EXPECT_EQ(bridge_lost(t, y), (std::vector<double>{2, 2, 4, 6, 8, 10, 10, 10}));
+  const LostSamples lost = lost_samples(t, y);
+  EXPECT_EQ(lost.count, 5u);
+  EXPECT_DOUBLE_EQ(lost.longest, 3.0);  // 1 to 4
+  EXPECT_DOUBLE_EQ(lost.longest_at, 2.0);
+  EXPECT_EQ(lost_samples(t, bridge_lost(t, y)).count, 0u);
+  EXPECT_TRUE(std::isnan(bridge_lost({0, 1}, {kNaN, kNaN})[0]));
+}
+
 }  // namespace
 }  // namespace freestand::signal
