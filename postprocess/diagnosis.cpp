@@ -1239,6 +1239,7 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
   std::vector<Job> jobs;
   for (std::size_t r = 0; r < recordings.size(); ++r) jobs.push_back({base[r], r, 1});
   std::mt19937 rng(12345);
+  std::mt19937 other_axes(54321);  // apart, so a record along x alone draws as it always did
   std::normal_distribution<double> normal(0, 1);
   for (int e = 0; e < members; ++e)
     for (std::size_t r = 0; r < recordings.size(); ++r) {
@@ -1264,6 +1265,17 @@ std::vector<Job> ensemble_jobs(const Model& base, const std::vector<Recording>& 
       if (doc.contains("table_motion") && doc["table_motion"].contains("x")) {
         json& x = doc["table_motion"]["x"];
         x["scale"] = x.value("scale", 1.0) * (1 + table_gain_sd * normal(rng));
+      }
+      // A recorded y or z has its own accelerometer, so its own draw, from its own stream: a record
+      // along x alone draws as it did, and every member draws both, so members pair alike whatever
+      // a model replays. An axis a candidate drives with x's record (vertical motion, pitch, roll)
+      // keeps the scale it copied from x.
+      for (const char* axis : {"y", "z"}) {
+        const double gain = 1 + table_gain_sd * normal(other_axes);
+        if (!doc.contains("table_motion")) continue;
+        const auto a = doc["table_motion"].find(axis);
+        if (a != doc["table_motion"].end() && a->is_object() && a->value("column", "") == std::string("a") + axis)
+          (*a)["scale"] = a->value("scale", 1.0) * gain;
       }
       jobs.push_back({doc, r, static_cast<unsigned>(100 + e)});
     }

@@ -309,6 +309,7 @@ class CaseRunner {
     target_ = spec.effect.body.empty() ? r.top : spec.effect.body;
     body_spec(scene_, target_);  // an unknown target body fails here, before any run
     command_ = table_command(spec.motion);
+    if (!spec.motion_y.is_null()) command_y_ = table_command(spec.motion_y);
     duration_ = spec.motion.at("duration").get<double>();
   }
 
@@ -316,6 +317,7 @@ class CaseRunner {
   json model_document() const {
     json doc = base_;
     doc["table_motion"] = {{"x", spec_.motion}};
+    if (command_y_) doc["table_motion"]["y"] = spec_.motion_y;
     doc["simulation"]["duration"] = duration_;
     doc["simulation"]["output_rate"] = spec_.sampling_hz;
     return doc;
@@ -369,20 +371,17 @@ class CaseRunner {
   double model_step() const { return model_step_; }
 
  private:
-  // The table's actual motion: gain * (command + noise) through the servo;
-  // written to the cache as CSV, named by its content.
+  // The table's actual motion: gain * (command + noise) through the servo, along x and, with a
+  // command along y, along y with its own gain and noise (drawn after x's, so a case along x
+  // alone draws as before); written to the cache as CSV, named by its content.
   json actual_table(std::mt19937& random, const std::string& effect, double magnitude, json* changes) const {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    const double gain = 1.0 + spec_.table.gain_sd * normal(random);
-    const std::size_t n = static_cast<std::size_t>(std::ceil(duration_ / kTableStep)) + 1;
-    std::vector<double> input(n);
-    for (std::size_t k = 0; k < n; ++k)
-      input[k] = gain * (command_->at(k * kTableStep).acceleration + spec_.table.noise * normal(random));
-    const std::vector<double> ax = butterworth_lowpass(input, kTableStep, spec_.table.bandwidth_hz, 2);
+    const std::vector<double> ax = actual_axis(random, *command_);
+    const std::vector<double> ay = command_y_ ? actual_axis(random, *command_y_) : std::vector<double>();
     const bool vertical = magnitude > 0 && effect == "table_vertical", pitch = magnitude > 0 && effect == "table_pitch";
-    std::string csv = std::string("t,ax") + (vertical ? ",az" : "") + (pitch ? ",pitch" : "") + "\n";
-    for (std::size_t k = 0; k < n; ++k) {
+    std::string csv = std::string("t,ax") + (ay.empty() ? "" : ",ay") + (vertical ? ",az" : "") + (pitch ? ",pitch" : "") + "\n";
+    for (std::size_t k = 0; k < ax.size(); ++k) {
       csv += fmt::format("{:.6f},{:.10g}", k * kTableStep, ax[k]);
+      if (!ay.empty()) csv += fmt::format(",{:.10g}", ay[k]);
       if (vertical || pitch) csv += fmt::format(",{:.10g}", magnitude * ax[k]);
       csv += "\n";
     }
@@ -394,10 +393,22 @@ class CaseRunner {
       return json{{"record", path}, {"format", "csv"}, {"column", column}, {"units", units}};
     };
     json table = {{"x", axis("ax", "m/s^2")}};
+    if (!ay.empty()) table["y"] = axis("ay", "m/s^2");
     if (vertical) table["z"] = axis("az", "m/s^2");
     if (pitch) table["pitch"] = axis("pitch", "rad/s^2");
     if (vertical || pitch) *changes = {{"axis", vertical ? "z" : "pitch"}, {"per_unit_of_table_ax", magnitude}};
     return table;
+  }
+
+  // One axis of the table as it moved: gain * (command + noise) through the servo, every kTableStep.
+  std::vector<double> actual_axis(std::mt19937& random, const SampledAxisMotion& command) const {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const double gain = 1.0 + spec_.table.gain_sd * normal(random);
+    const std::size_t n = static_cast<std::size_t>(std::ceil(duration_ / kTableStep)) + 1;
+    std::vector<double> input(n);
+    for (std::size_t k = 0; k < n; ++k)
+      input[k] = gain * (command.at(k * kTableStep).acceleration + spec_.table.noise * normal(random));
+    return butterworth_lowpass(input, kTableStep, spec_.table.bandwidth_hz, 2);
   }
 
   Recording run_cached(const json& document) const {
@@ -417,6 +428,7 @@ class CaseRunner {
   Scene scene_;
   std::string target_;
   std::unique_ptr<SampledAxisMotion> command_;
+  std::unique_ptr<SampledAxisMotion> command_y_;  // null: the table moves along x alone
   double duration_ = 0.0;
 };
 
@@ -449,10 +461,11 @@ Recording measure(const Recording& truth, const CaseSpec& spec, unsigned realisa
       c.values.push_back(values[k] + (m.noise ? noise * normal(noise_random) : 0.0));
     out.channels.push_back(std::move(c));
   };
-  if (const RecordingChannel* a = truth.find("table_ax")) {
-    record("table_ax", a->values, s.acceleration, false);
-    record("table_dx", truth.find("table_dx")->values, s.length, false);
-  }
+  for (const char axis : {'x', 'y'})
+    if (const RecordingChannel* a = truth.find(fmt::format("table_a{}", axis))) {
+      record(a->name, a->values, s.acceleration, false);
+      record(fmt::format("table_d{}", axis), truth.find(fmt::format("table_d{}", axis))->values, s.length, false);
+    }
   for (const std::string& body : truth.body_names())
     for (const std::string& channel : channel_names())
       record(body + "." + channel, truth.body_channel(body, channel), is_angle(channel) ? s.angle : s.length, true);
@@ -476,12 +489,17 @@ json nominal_sidecar(const json& scenario, const CaseSpec& spec) {
   nominal["sensor_noise"] = {{"angle", s.angle}, {"length", s.length}, {"acceleration", s.acceleration}};
   nominal["lowpass"] = {{"type", "butterworth"}, {"order", s.lowpass_order}, {"causal", true},
                         {"cutoff_hz", s.lowpass_hz > 0 ? s.lowpass_hz : spec.sampling_hz / 4}};
-  const json& g = spec.motion;
-  nominal["ground_motion"] = fmt::format(
-      "command to the table along x: {} ({}), scale {}, from {} s for {} s; table_ax and table_dx are what the "
-      "table did",
-      fs::path(g.at("record").get<std::string>()).filename().string(), g.value("units", "as stated in the file"),
-      g.value("scale", 1.0), g.value("skip", 0.0), g.at("duration").get<double>());
+  const auto command = [](const json& g, char axis) {
+    return fmt::format("command to the table along {}: {} ({}), scale {}, from {} s for {} s", axis,
+                       fs::path(g.at("record").get<std::string>()).filename().string(),
+                       g.value("units", "as stated in the file"), g.value("scale", 1.0), g.value("skip", 0.0),
+                       g.at("duration").get<double>());
+  };
+  nominal["ground_motion"] =
+      spec.motion_y.is_null()
+          ? command(spec.motion, 'x') + "; table_ax and table_dx are what the table did"
+          : command(spec.motion, 'x') + "; " + command(spec.motion_y, 'y') + "; table_ax, table_dx, table_ay and "
+                                                                              "table_dy are what the table did";
   nominal["source"] = "synthetic: freestand generate (docs/diagnose-cases.md)";
   return nominal;
 }
@@ -583,7 +601,7 @@ double effect_deflection(const Recording& with, const Recording& without, const 
 }
 
 CaseSpec parse_case(const json& f, const std::string& folder, const std::string& where) {
-  check_keys(f, {"name", "scenario", "motion", "effect", "sampling_hz", "sensors", "table", "truth", "perturbation",
+  check_keys(f, {"name", "scenario", "motion", "motion_y", "effect", "sampling_hz", "sensors", "table", "truth", "perturbation",
                  "seed", "description"},
              where);
   CaseSpec c;
@@ -599,6 +617,14 @@ CaseSpec parse_case(const json& f, const std::string& folder, const std::string&
   if (!c.motion.contains("duration") || !(c.motion.at("duration").get<double>() > 0))
     fail(where + ".motion.duration", "the window length (s) is required and must be positive");
   c.motion["record"] = absolute_from(folder, c.motion.at("record").get<std::string>());
+  if (f.contains("motion_y")) {
+    c.motion_y = f.at("motion_y");
+    check_keys(c.motion_y, {"record", "units", "format", "column", "scale", "skip", "duration"}, where + ".motion_y");
+    if (!c.motion_y.contains("record")) fail(where + ".motion_y", "'record' is missing");
+    if (c.motion_y.value("duration", json()) != c.motion.at("duration"))
+      fail(where + ".motion_y.duration", "must be the same window length as motion.duration");
+    c.motion_y["record"] = absolute_from(folder, c.motion_y.at("record").get<std::string>());
+  }
   if (f.contains("effect")) {
     const json& e = f.at("effect");
     check_keys(e, {"name", "magnitude", "body", "concealment"}, where + ".effect");
@@ -835,6 +861,7 @@ GeneratedCase generate_case(const CaseSpec& spec, const std::string& cache, int 
         {"noise", spec.table.noise}}},
       {"scenario", spec.scenario},
       {"motion", spec.motion},
+      {"motion_y", spec.motion_y},
       {"perturbation", {{"runs", spec.perturbation.runs}, {"velocity", spec.perturbation.velocity},
                         {"omega", spec.perturbation.omega}}},
       {"seed", spec.seed}};

@@ -76,6 +76,7 @@ struct CaseSpec {
   std::string name;            // file stem of the recording
   std::string scenario;        // the nominal model: bodies, interfaces, contact, simulation.time_step
   nlohmann::json motion;       // table command along x: record, units, format, column, scale, skip, duration
+  nlohmann::json motion_y;     // table command along y, the same keys and duration (null: none)
   ConcealedEffect effect;
   double sampling_hz = 200.0;
   SensorModel sensors;
