@@ -919,20 +919,16 @@ struct Profile {
   std::vector<std::vector<Features>> members;  // per point, the features of each member it ran as
 };
 
-// The next rung of a quick profile (a curve sorted by u) on one side (-1 or +1) of the nominal
-// u0: twice as far out as its outermost point there (the ladder's 4x straddled case21's minimum,
-// 0.032 and 0.1 rad/m about 0.07, and one member's chaos took the nearer), clamped to the range,
-// while that point is still falling (lower than the point inside it, the nominal for the first);
-// NaN when the side turned, has no point, or has reached the range's end.
-double next_rung(const std::vector<std::pair<double, double>>& curve, double u0, double side) {
-  std::vector<std::pair<double, double>> outward;  // the nominal, then the side's points outward
-  for (const auto& point : curve)
-    if ((point.first - u0) * side > -1e-12) outward.push_back(point);
-  if (side < 0) std::reverse(outward.begin(), outward.end());
-  if (outward.size() < 2) return signal::kNaN;
-  const auto& outer = outward.back();
-  if (!(outer.second < outward[outward.size() - 2].second) || outer.first <= 0 || outer.first >= 1) return signal::kNaN;
-  return std::clamp(u0 + 2 * (outer.first - u0), 0.0, 1.0);
+// The next rung of a quick profile whose lowest point `best` is its outermost on its side of
+// the nominal u[0]: twice as far out (the ladder's 4x straddled case21's minimum, 0.032 and
+// 0.1 rad/m about 0.07, and one member's chaos took the nearer), clamped to the range; NaN when the profile turned
+// (a point farther out on that side), the lowest is the nominal, or it is at the range's end.
+double next_rung(const Profile& p, double best) {
+  const double u0 = p.u.front(), side = best - u0;
+  if (std::abs(side) < 1e-12 || best <= 0 || best >= 1) return signal::kNaN;
+  for (double u : p.u)
+    if ((u - u0) * side > 0 && std::abs(u - u0) > std::abs(side) + 1e-12) return signal::kNaN;
+  return std::clamp(u0 + 2 * side, 0.0, 1.0);
 }
 
 // The kScreened of the first `physics` fits whose profiles dropped most (a positive drop), best first.
@@ -1840,31 +1836,25 @@ Round Diagnoser::profiled(int number) {
 // pitch 0.08 rad/m) profiled to 0.032 rad/m, the ladder's last rung (chi2 drop 54), screened
 // there below a sensor's clock lead (44) that was then accepted first, where 0.08 drops the
 // misfit by thousands. So the kScreened candidates whose profiles dropped most go on, one rung
-// (2x) at a time up to kProfileExtensions, on each side of the nominal still falling there. Each
-// side, not only the lowest point's: one member's chaos decides which side's last rung is lower,
-// and a bi-axial block's COM 20 mm off in +x profiled 105 at +16 mm and 90 at -16 mm, ran on to
-// -50 mm alone, and was not named, where +20 mm fits 20 on the ensemble against 170 as given
-// (out/s59/biax, biax04).
+// (2x) at a time up to kProfileExtensions, while the outermost point stays the lowest.
 void Diagnoser::extend_falling_profiles(Round& r) {
   for (int pass = 0; pass < kProfileExtensions; ++pass) {
     std::vector<std::size_t> extended;
     std::vector<Model> points;
     for (std::size_t i : most_dropped(r.fits, candidates_.size())) {
-      const Candidate& c = candidates_[i];
-      const std::vector<std::pair<double, double>> curve = profile_curve(c, r.profiles[i], profile_target_);
-      for (double side : {-1.0, 1.0}) {
-        const double u = next_rung(curve, to_scaled(c, c.nominal), side);
-        if (!std::isfinite(u)) continue;
-        extended.push_back(i), r.profiles[i].u.push_back(u);
-        points.push_back(applied(base_, c, to_value(c, u)));
-      }
+      const double u = next_rung(r.profiles[i], to_scaled(candidates_[i], r.fits[i].value));
+      if (!std::isfinite(u)) continue;
+      extended.push_back(i), r.profiles[i].u.push_back(u);
+      points.push_back(applied(base_, candidates_[i], to_value(candidates_[i], u)));
     }
     if (points.empty()) return;
     const std::vector<std::vector<Features>> evaluated = search_.evaluate(
         points, fmt::format("round {}: profiles still falling", r.number), options_.profile_members, true);
-    for (std::size_t n = 0; n < extended.size(); ++n) r.profiles[extended[n]].members.push_back(evaluated[n]);
-    for (std::size_t i : extended)
+    for (std::size_t n = 0; n < extended.size(); ++n) {
+      const std::size_t i = extended[n];
+      r.profiles[i].members.push_back(evaluated[n]);
       r.fits[i] = summarise(candidates_[i], r.profiles[i], profile_target_, r.chi2_base, r.held_base, profile_held(), false);
+    }
   }
 }
 
