@@ -1397,6 +1397,7 @@ struct Round {
   std::vector<double> profile_delta;     // chi2 drops of the profiles (the same scatter for all)
   std::map<std::size_t, std::pair<double, double>> screened;  // physics candidate -> its screen's drops (all, held out)
   std::map<std::size_t, double> screened_at;                  // physics candidate -> the scaled value its screen ran at
+  std::set<std::size_t> other_side;                           // screened on the side of the nominal without the profile's lowest point
   std::map<std::size_t, std::vector<Features>> tested;    // the ensemble at each physics candidate tested
   std::map<std::size_t, std::vector<Features>> extended;  // its members M + 1 to 2M, where a second look ran them
 };
@@ -1455,12 +1456,13 @@ class Diagnoser {
   void screen(Round& r);
   std::vector<std::pair<double, double>> screen_drops(const std::vector<std::size_t>& which, const std::vector<double>& at,
                                                       const std::string& stage);
-  void look_at_other_valleys(const Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
+  void look_at_other_valleys(Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
                              std::vector<std::pair<double, double>>& drops);
   void look_again_at_parabolas(const Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
                                std::vector<std::pair<double, double>>& drops);
   std::size_t first_passing(Round& r);
   Valley screened_valley(const Round& r, std::size_t i) const;
+  Profile on_screened_side(const Round& r, std::size_t i) const;
   bool left_the_screened_valley(const Round& r, std::size_t i) const;
   void retest_in_screened_valley(Round& r, std::size_t i);
   bool fails_only_held_out(const FittedCandidate& f) const;
@@ -1959,7 +1961,7 @@ void Diagnoser::look_again_at_parabolas(const Round& r, const std::vector<std::s
 // half did not improve is screened once more at its profile's lowest point on the other side of
 // the nominal, if that point dropped, and that screen stands if it ranks higher (held-out
 // improved first, then the drop; first_passing's order), counting one more candidate tried.
-void Diagnoser::look_at_other_valleys(const Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
+void Diagnoser::look_at_other_valleys(Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
                                       std::vector<std::pair<double, double>>& drops) {
   std::vector<std::size_t> again, which;
   std::vector<double> again_at;
@@ -1988,6 +1990,7 @@ void Diagnoser::look_at_other_valleys(const Round& r, const std::vector<std::siz
                                    higher ? " (counted as one more candidate tried)" : ""));
     if (!higher) continue;
     drops[n] = more[k], at[n] = again_at[k];
+    r.other_side.insert(which[k]);
     ++tried_;
   }
 }
@@ -2136,20 +2139,32 @@ void Diagnoser::test(Round& r, std::size_t i) {
   widen_to_ensemble(r.fits[i], target_.count());
 }
 
-// Two rounds of 4 points inside the bracket around the profile's minimum.
+// Candidate i's profile points on the side of the nominal it was screened on, when that is the
+// side without the profile's lowest point (look_at_other_valleys); else all of them.
+Profile Diagnoser::on_screened_side(const Round& r, std::size_t i) const {
+  if (!r.other_side.count(i)) return r.profiles[i];
+  const double u0 = to_scaled(candidates_[i], candidates_[i].nominal), at = r.screened_at.at(i);
+  Profile out;
+  for (std::size_t k = 0; k < r.profiles[i].u.size(); ++k)
+    if ((r.profiles[i].u[k] - u0) * (at - u0) > -1e-12)
+      out.u.push_back(r.profiles[i].u[k]), out.members.push_back(r.profiles[i].members[k]);
+  return out;
+}
+
+// Two rounds of 4 points inside the bracket around the profile's minimum (on the screened side).
 void Diagnoser::refine(Round& r, std::size_t i) {
   const Candidate& c = candidates_[i];
   Profile& p = r.profiles[i];
   for (int step = 0; step < 2; ++step) {
     std::vector<Model> points;
-    for (double u : refinement_points(profile_curve(c, p, profile_target_))) {
+    for (double u : refinement_points(profile_curve(c, on_screened_side(r, i), profile_target_))) {
       p.u.push_back(u);
       points.push_back(applied(base_, c, to_value(c, u)));
     }
     const std::vector<std::vector<Features>> more =
         search_.evaluate(points, fmt::format("round {}: refining", r.number), options_.profile_members, true);
     p.members.insert(p.members.end(), more.begin(), more.end());
-    r.fits[i] = summarise(c, p, profile_target_, r.chi2_base, r.held_base, profile_held(), true);
+    r.fits[i] = summarise(c, on_screened_side(r, i), profile_target_, r.chi2_base, r.held_base, profile_held(), true);
   }
   r.profile_delta[i] = r.fits[i].delta;
 }
