@@ -1970,9 +1970,7 @@ void Diagnoser::look_at_other_valleys(Round& r, const std::vector<std::size_t>& 
     const std::size_t i = screened[n];
     const Candidate& c = candidates_[i];
     const double u0 = to_scaled(c, c.nominal);
-    double best = signal::kNaN, lowest = r.chi2_base;
-    for (const auto& [u, chi2] : profile_curve(c, r.profiles[i], profile_target_))
-      if ((u - u0) * (at[n] - u0) < 0 && chi2 < lowest) best = u, lowest = chi2;
+    const double best = lowest_across_nominal(profile_curve(c, r.profiles[i], profile_target_), u0, at[n], r.chi2_base);
     if (std::isfinite(best)) again.push_back(n), which.push_back(i), again_at.push_back(best);
   }
   if (again.empty()) return;

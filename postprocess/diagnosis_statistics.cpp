@@ -287,6 +287,13 @@ Valley valley_of(const std::vector<std::pair<double, double>>& points, double u)
   return {points[a].first, points[b].first};
 }
 
+double lowest_across_nominal(const std::vector<std::pair<double, double>>& points, double u0, double at, double base) {
+  double best = signal::kNaN, lowest = base;
+  for (const auto& [u, chi2] : points)
+    if ((u - u0) * (at - u0) < 0 && chi2 < lowest) best = u, lowest = chi2;
+  return best;
+}
+
 double secant_sd(double u0, double u, double drop) { return drop > 0 ? std::abs(u - u0) / std::sqrt(drop) : signal::kNaN; }
 
 // The curvature alone assumes the model fits the data; a misfit beyond the noise (chi2 per

@@ -138,6 +138,11 @@ struct Valley {
 };
 Valley valley_of(const std::vector<std::pair<double, double>>& points, double u);
 
+// The lowest point (scaled u) of a profile (points (u, chi2)) on the other side of the nominal
+// u0 from `at`, if it lies below `base` (the model as given): a second valley, where one
+// member's chaos may have put the profile's lowest point on the wrong side. NaN if none.
+double lowest_across_nominal(const std::vector<std::pair<double, double>>& points, double u0, double at, double base);
+
 // Standard error (scaled units) from the parabola with its minimum at the fit u through the
 // model before it (u0), `drop` below: |u - u0| / sqrt(drop). NaN without a drop.
 double secant_sd(double u0, double u, double drop);

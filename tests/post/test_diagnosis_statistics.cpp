@@ -277,6 +277,20 @@ TEST(DiagnosisStatistics, AProfilesValleyEndsWhereTheCurveStopsRising) {
   }
 }
 
+// A quick profile in the manner of biax04's COM (session 59; mm about the nominal 0, the
+// model as given at 175): its lowest point at -50 mm, a second valley at +16 mm. A screen
+// run at either valley looks across the nominal to the other; a side with no point below the
+// model as given, or only the nominal itself, has none.
+TEST(DiagnosisStatistics, TheOtherValleyIsTheLowestPointAcrossTheNominalBelowTheModelAsGiven) {
+  const std::vector<std::pair<double, double>> com = {
+      {-50, 87.5}, {-32, 120.0}, {-16, 90.5}, {0, 98.0}, {16, 103.9}, {32, 297.0}};
+  EXPECT_DOUBLE_EQ(lowest_across_nominal(com, 0, -50, 175), 16);
+  EXPECT_DOUBLE_EQ(lowest_across_nominal(com, 0, -16, 175), 16);
+  EXPECT_DOUBLE_EQ(lowest_across_nominal(com, 0, 16, 175), -50);
+  EXPECT_TRUE(std::isnan(lowest_across_nominal(com, 0, -50, 100)));  // +16 mm did not drop
+  EXPECT_TRUE(std::isnan(lowest_across_nominal({{0, 1.0}, {16, 90.0}}, 0, 16, 175)));
+}
+
 TEST(DiagnosisStatistics, TheUnexplainedFlagFiresOnARightModelAtItsFamilyWiseRate) {
   // Bonferroni: the two-sided normal quantile at 0.01 / 40 (A&S 26.2: z(1.25e-4) = 3.6623).
   EXPECT_NEAR(family_wise_z(0.01, 40), 3.6623, 1e-3);
