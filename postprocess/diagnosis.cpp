@@ -1957,10 +1957,11 @@ void Diagnoser::look_again_at_parabolas(const Round& r, const std::vector<std::s
 // A quick profile can drop on both sides of its nominal, and one member's chaos decides which
 // side's point is lowest: a bi-axial block's COM 20 mm off in +x profiled 90.5 at -16 mm, 87.5 at
 // -50 mm and 103.9 at +16 mm, was screened at -50 mm, where its held-out half got worse, and an
-// edge inset was named (biax04 of session 59). A candidate whose screen's fit set or held-out
-// half did not improve is screened once more at its profile's lowest point on the other side of
-// the nominal, if that point dropped, and that screen stands if it ranks higher (held-out
-// improved first, then the drop; first_passing's order), counting one more candidate tried.
+// edge inset was named (biax04 of session 59). A candidate whose screen did not improve both the
+// whole record and its held-out half is screened once more at its profile's lowest point on the
+// other side of the nominal, if that point dropped, and that screen stands if it improves the
+// whole record and ranks higher (held-out improved first, then the drop; first_passing's
+// order), counting one more candidate tried.
 void Diagnoser::look_at_other_valleys(Round& r, const std::vector<std::size_t>& screened, std::vector<double>& at,
                                       std::vector<std::pair<double, double>>& drops) {
   std::vector<std::size_t> again, which;
